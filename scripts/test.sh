@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# README command 2: install what is missing, build with warnings as errors, run the whole test
+# suite (CTest over the Check executables); then the same suite under AddressSanitizer and
+# UndefinedBehaviorSanitizer in a second build tree.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+JOBS=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDEM_WERROR=ON
+cmake --build build -j "$JOBS"
+(cd build && ctest --output-on-failure -j "$JOBS")
+if [ "${DEM_SKIP_SANITIZE:-0}" != "1" ]; then
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DDEM_WERROR=ON -DDEM_SANITIZE=ON
+  cmake --build build-asan -j "$JOBS"
+  (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+     ctest --output-on-failure -j "$JOBS" -L '^$|fast' -LE slow)
+fi

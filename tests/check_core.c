@@ -1,0 +1,115 @@
+/* Core module tests: errors, parameter sets, reduced properties, time steps, damping. */
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem/contact.h"
+#include "dem/error.h"
+#include "dem/material.h"
+#include "dem/params.h"
+
+START_TEST(test_strerror) {
+  ck_assert_str_eq(dem_strerror(DEM_OK), "success");
+  ck_assert_str_eq(dem_strerror(DEM_ERANGE), "value outside its allowed range");
+  ck_assert_str_eq(dem_strerror(9999), "unknown status code");
+  dem_err e = {0};
+  ck_assert_int_eq(dem_err_set(&e, DEM_EPARSE, "x=%d", 3), DEM_EPARSE);
+  dem_err_prefix(&e, "f.cfg:%d: ", 12);
+  ck_assert_str_eq(e.msg, "f.cfg:12: x=3");
+  ck_assert_int_eq(dem_err_set(NULL, DEM_EIO, "ignored"), DEM_EIO);
+}
+END_TEST
+
+START_TEST(test_params) {
+  dem_params ps;
+  dem_err e = {0};
+  dem_params_init(&ps);
+  ck_assert_int_eq(dem_params_parse_assignment(&ps, "ke=1500", "--set", &e), DEM_OK);
+  ck_assert_int_eq(dem_params_parse_assignment(&ps, "gamma=0.2", "a.cfg:3", &e), DEM_OK);
+  double v;
+  ck_assert(dem_params_get(&ps, "ke", &v));
+  ck_assert_double_eq(v, 1500.0);
+  ck_assert_str_eq(dem_params_origin(&ps, "gamma"), "a.cfg:3: ");
+  ck_assert_int_eq(dem_params_parse_assignment(&ps, "ke=abc", "--set", &e), DEM_EPARSE);
+  ck_assert(strstr(e.msg, "ke") != NULL);
+  ck_assert_int_eq(dem_params_parse_assignment(&ps, "=3", "--set", &e), DEM_EPARSE);
+  ck_assert_int_eq(dem_params_parse_assignment(&ps, "ke=1e999", "--set", &e), DEM_EPARSE);
+  ck_assert_int_eq(dem_params_set(&ps, "kp", NAN, "--set", &e), DEM_ENONFINITE);
+  ck_assert_int_eq(dem_params_set(&ps, "kp", INFINITY, "--set", &e), DEM_ENONFINITE);
+  ck_assert_double_eq(dem_params_get_or(&ps, "absent", 2.5), 2.5);
+}
+END_TEST
+
+START_TEST(test_reduced) {
+  /* Equal spheres: R* = R/2, E* = E / (2 (1 - nu^2)), m* = m/2; a wall: R* = R, m* = m. */
+  ck_assert_double_eq_tol(dem_reduced_radius(2.385e-6, 2.385e-6), 1.1925e-6, 1e-18);
+  ck_assert_double_eq_tol(dem_reduced_radius(2.385e-6, INFINITY), 2.385e-6, 1e-18);
+  double Es = dem_reduced_modulus(1.2e9, 0.3, 1.2e9, 0.3);
+  ck_assert_double_eq_tol(Es, 1.2e9 / (2 * 0.91), 1e-3);
+  /* Rigid wall: E* = E / (1 - nu^2). */
+  ck_assert_double_eq_tol(dem_reduced_modulus(1.2e9, 0.3, INFINITY, 0.3), 1.2e9 / 0.91, 1e-3);
+  /* Mindlin ratio k_t/k_n = 4 G_eq / E_eq = 2 (1 - nu)/(2 - nu) for equal materials. */
+  double Gs = dem_reduced_shear_modulus(1.2e9, 0.3, 1.2e9, 0.3);
+  ck_assert_double_eq_tol(4 * Gs / Es, 2 * 0.7 / 1.7, 1e-12);
+  ck_assert_double_eq_tol(dem_reduced_mass(2.0, 2.0), 1.0, 1e-15);
+  ck_assert_double_eq(dem_reduced_mass(2.0, INFINITY), 2.0);
+}
+END_TEST
+
+START_TEST(test_time_steps) {
+  /* Rayleigh, thesis eq (3.1), against a hand calculation for R = 2.45 um, rho = 1350,
+   * E = 1.2 GPa, nu = 0.3: G = 4.615e8 Pa, sqrt(rho/G) = 1.7103e-3 s/m,
+   * T_R = pi * 2.45e-6 * 1.7103e-3 / 0.92553 = 1.4223e-8 s. */
+  double tr = dem_dt_rayleigh(2.45e-6, 1350.0, 1.2e9, 0.3);
+  ck_assert_double_eq_tol(tr, 1.4223e-8, 1e-11);
+  /* Mass-spring (4.29-4.31): sqrt((m/2)/(k/2)) = sqrt(m/k). */
+  ck_assert_double_eq_tol(dem_dt_mass_spring(4e-9, 1e6), sqrt(4e-15), 1e-20);
+}
+END_TEST
+
+START_TEST(test_eta_linear) {
+  ck_assert_double_eq(dem_damping_eta_linear(1.0), 0.0);
+  ck_assert(dem_damping_eta_linear(0.0) < 0);
+  ck_assert(dem_damping_eta_linear(1.5) < 0);
+  /* e = 0.5: 2 ln2 / sqrt(pi^2 + ln^2 2) = 1.386294 / 3.217150 = 0.430908 */
+  ck_assert_double_eq_tol(dem_damping_eta_linear(0.5), 0.430908, 1e-6);
+}
+END_TEST
+
+START_TEST(test_eta_hertz) {
+  /* Monotone in e and finite; e = 1 needs no damping. */
+  ck_assert_double_eq(dem_damping_eta_hertz(1.0, 0), 0.0);
+  double prev = 0.0;
+  for (double e = 0.95; e > 0.1; e -= 0.15) {
+    double eta = dem_damping_eta_hertz(e, 0);
+    ck_assert_msg(eta > prev, "eta(%g) = %g not increasing", e, eta);
+    prev = eta;
+    /* Clipping the tensile end force removes less energy: it needs more damping. */
+    ck_assert(dem_damping_eta_hertz(e, 1) > eta);
+  }
+  ck_assert(dem_damping_eta_hertz(-0.1, 0) < 0);
+}
+END_TEST
+
+static Suite *suite(void) {
+  Suite *s = suite_create("core");
+  TCase *tc = tcase_create("core");
+  tcase_set_timeout(tc, 60);
+  tcase_add_test(tc, test_strerror);
+  tcase_add_test(tc, test_params);
+  tcase_add_test(tc, test_reduced);
+  tcase_add_test(tc, test_time_steps);
+  tcase_add_test(tc, test_eta_linear);
+  tcase_add_test(tc, test_eta_hertz);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) {
+  SRunner *sr = srunner_create(suite());
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
