@@ -13,5 +13,5 @@ if [ "${DEM_SKIP_SANITIZE:-0}" != "1" ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DDEM_WERROR=ON -DDEM_SANITIZE=ON
   cmake --build build-asan -j "$JOBS"
   (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-     ctest --output-on-failure -j "$JOBS" -L '^$|fast' -LE slow)
+     ctest --output-on-failure -j "$JOBS" -LE slow)
 fi
