@@ -1,0 +1,192 @@
+/* Particle-particle contact forces over the half neighbour list, and the parallel scheme.
+ *
+ * Geometry of a pair (i, j), n the unit normal from j to i, r = |x_i - x_j|:
+ *   overlap      alpha = r_i + r_j - r                      (m, > 0 compression)
+ *   approach     alpha_dot = -(v_i - v_j) . n               (m/s, > 0 approaching)
+ *   contact-point relative velocity (contact point at distance r_i from centre i):
+ *                v_c = v_i - v_j - (r_i w_i + r_j w_j) x n
+ *   tangential   v_t = v_c - (v_c . n) n
+ *   R* = r_i r_j / (r_i + r_j), m* = m_i m_j / (m_i + m_j)   (thesis eq 3.16)
+ * Force on i: F = f_n n + F_t (f_n from the law, > 0 repulsive; F_t from dem/tangential.h);
+ * on j: -F. Torques: T_i = -r_i n x F_t, T_j = -r_j n x F_t; rolling M_i from
+ * dem_rolling_torque with w_rel = w_i - w_j, M_j = -M_i r_j / r_i.
+ *
+ * Parallel scheme (docs/engine.md): the particles are in cell order and thread t owns a
+ * contiguous range of rows [a_t, b_t), balanced by pair count. Because j > i >= a_t, thread
+ * t writes the reaction on j directly when j < b_t (no other thread touches that range);
+ * when j >= b_t the reaction goes to the thread's spill list, and the spill lists are added
+ * after the loop in thread order. The summation order is therefore fixed for a given
+ * thread count (bit-identical runs) and only the order of a few additions changes with the
+ * thread count (round-off).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+#define DEM_ROLL_W_EPS 1e-9 /* rad/s: below this relative spin no rolling torque */
+
+void dem_engine_partition(dem_sim *s) {
+  const dem_nlist *l = &s->nl;
+  size_t n = s->p.n;
+  int nt = s->nthreads;
+  /* cost of a row: its pairs plus a constant for the particle's own work (walls, zeroing) */
+  double total = (double)l->npairs + 2.0 * (double)n;
+  size_t i = 0;
+  double acc = 0.0;
+  for (int t = 0; t < nt; t++) {
+    s->td[t].row_begin = i;
+    double target = total * (double)(t + 1) / nt;
+    while (i < n && (t == nt - 1 || acc + 0.5 * ((l->first[i + 1] - l->first[i]) + 2.0) < target)) {
+      acc += (double)(l->first[i + 1] - l->first[i]) + 2.0;
+      i++;
+    }
+    s->td[t].row_end = i;
+  }
+}
+
+int dem_engine_spill_reserve(dem_sim *s, dem_err *err) {
+  const dem_nlist *l = &s->nl;
+  for (int t = 0; t < s->nthreads; t++) {
+    dem_tdata *td = &s->td[t];
+    size_t cnt = 0;
+    for (size_t i = td->row_begin; i < td->row_end; i++)
+      for (uint32_t q = l->first[i]; q < l->first[i + 1]; q++) cnt += l->nbr[q] >= td->row_end;
+    if (cnt > td->cap_spill) {
+      dem_spill *sp = realloc(td->spill, cnt * sizeof *sp);
+      if (!sp) return dem_err_set(err, DEM_ENOMEM, "force spill buffers: out of memory");
+      td->spill = sp;
+      td->cap_spill = cnt;
+    }
+    td->nspill = 0;
+  }
+  return DEM_OK;
+}
+
+static inline void cross(const double a[3], const double b[3], double c[3]) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
+  const dem_particles *p = &s->p;
+  const double *restrict x = p->x, *restrict v = p->v, *restrict w = p->omega;
+  const double *restrict rad = p->radius, *restrict mass = p->mass;
+  const int *restrict mat = p->material;
+  double *restrict f = p->f, *restrict tq = p->torque;
+  const uint32_t *restrict first = s->nl.first, *restrict nbr = s->nl.nbr;
+  double *restrict hist = s->nl.hist;
+  const int nh = s->nh, hoff = s->hoff;
+  const double dt = s->dt;
+  const size_t a = td->row_begin, b = td->row_end;
+  size_t contacts = 0, nspill = 0;
+  double max_ov = td->max_overlap;
+
+  for (size_t i = a; i < b; i++) {
+    const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
+    const double ri = rad[i], mi = mass[i];
+    const int mati = mat[i];
+    double fi[3] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+    double ti[3] = {tq[3 * i], tq[3 * i + 1], tq[3 * i + 2]};
+    for (uint32_t q = first[i]; q < first[i + 1]; q++) {
+      const size_t j = nbr[q];
+      double *restrict h = hist + (size_t)q * nh;
+      const double dx = xi0 - x[3 * j], dy = xi1 - x[3 * j + 1], dz = xi2 - x[3 * j + 2];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double rj = rad[j], rs = ri + rj;
+      if (r2 >= rs * rs && h[0] == 0.0) {
+        double *xi = h + hoff;
+        if (xi[0] != 0.0 || xi[1] != 0.0 || xi[2] != 0.0) xi[0] = xi[1] = xi[2] = 0.0;
+        continue;
+      }
+      const dem_inter *in = dem_engine_inter(s, mati, mat[j]);
+      const double r = sqrt(r2);
+      const double inv = r > 0.0 ? 1.0 / r : 0.0;
+      const double n[3] = {r > 0.0 ? dx * inv : 0.0, r > 0.0 ? dy * inv : 0.0,
+                           r > 0.0 ? dz * inv : 1.0};
+      const double alpha = rs - r;
+      const double mj = mass[j];
+      dem_geom g = {ri * rj / rs, mi * mj / (mi + mj)};
+      const double *vi = v + 3 * i, *vj = v + 3 * j, *wi = w + 3 * i, *wj = w + 3 * j;
+      const double vr[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
+      const double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
+      if (h[0] == 0.0 && in->normal.law->init) dem_contact_init(&in->normal, &g, h, NULL);
+      dem_normal out;
+      in->normal.law->force(in->normal.c, &g, h, alpha, -vn, &out);
+      if (!out.contact) {
+        double *xi = h + hoff;
+        xi[0] = xi[1] = xi[2] = 0.0;
+        if (out.f == 0.0) continue;
+      }
+      contacts++;
+      {
+        double ov = alpha / (ri < rj ? ri : rj);
+        max_ov = ov > max_ov ? ov : max_ov;
+      }
+      double F[3] = {out.f * n[0], out.f * n[1], out.f * n[2]};
+      double tqi[3] = {0.0, 0.0, 0.0}, tqj[3] = {0.0, 0.0, 0.0};
+#ifdef DEM_HAVE_TANGENTIAL
+      if (in->tang.kind != DEM_TANGENTIAL_NONE && out.contact) {
+        const double ws[3] = {ri * wi[0] + rj * wj[0], ri * wi[1] + rj * wj[1],
+                              ri * wi[2] + rj * wj[2]};
+        double wxn[3];
+        cross(ws, n, wxn);
+        const double vt[3] = {vr[0] - vn * n[0] - wxn[0], vr[1] - vn * n[1] - wxn[1],
+                              vr[2] - vn * n[2] - wxn[2]};
+        double ft[3], nxf[3];
+        dem_tangential_force(&in->tang, h + hoff, n, vt, dt, g.R, alpha > 0.0 ? alpha : 0.0,
+                             g.m, out.f, out.f_adh, ft);
+        F[0] += ft[0];
+        F[1] += ft[1];
+        F[2] += ft[2];
+        cross(n, ft, nxf);
+        for (int k = 0; k < 3; k++) {
+          tqi[k] = -ri * nxf[k];
+          tqj[k] = -rj * nxf[k];
+        }
+      }
+      if (in->roll.mu_r > 0.0 && out.contact) {
+        const double wrel[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
+        double mr[3];
+        dem_rolling_torque(&in->roll, wrel, fabs(out.f), ri, DEM_ROLL_W_EPS, mr);
+        const double sc = rj / ri;
+        for (int k = 0; k < 3; k++) {
+          tqi[k] += mr[k];
+          tqj[k] -= sc * mr[k];
+        }
+      }
+#else
+      (void)wi;
+      (void)wj;
+      (void)dt;
+      (void)cross;
+#endif
+      for (int k = 0; k < 3; k++) {
+        fi[k] += F[k];
+        ti[k] += tqi[k];
+      }
+      if (j < b) {
+        for (int k = 0; k < 3; k++) {
+          f[3 * j + k] -= F[k];
+          tq[3 * j + k] += tqj[k];
+        }
+      } else {
+        dem_spill *sp = td->spill + nspill++;
+        sp->j = (uint32_t)j;
+        for (int k = 0; k < 3; k++) {
+          sp->f[k] = -F[k];
+          sp->t[k] = tqj[k];
+        }
+      }
+    }
+    for (int k = 0; k < 3; k++) {
+      f[3 * i + k] = fi[k];
+      tq[3 * i + k] = ti[k];
+    }
+  }
+  td->contacts += contacts;
+  td->nspill = nspill;
+  td->max_overlap = max_ov;
+}
