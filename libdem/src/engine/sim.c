@@ -117,6 +117,7 @@ int dem_sim_set_dt(dem_sim *s, double dt, dem_err *err) {
 
 void dem_sim_set_gravity(dem_sim *s, const double g[3]) {
   for (int k = 0; k < 3; k++) s->g[k] = g[k];
+  s->need_forces = 1; /* the stored forces include the old gravity */
 }
 
 int dem_sim_set_skin(dem_sim *s, double skin, dem_err *err) {
