@@ -187,11 +187,16 @@ int main(int argc, char **argv) {
   if (dem_sim_set_dt(sim, 1.5e-6, &e) || dem_sim_set_skin(sim, 1e-4, &e) ||
       dem_sim_set_threads(sim, threads, &e))
     return fail("settings", &e);
+  struct rusage ru0, ru;
+  getrusage(RUSAGE_SELF, &ru0);
   if (dem_sim_run(sim, steps, &e)) return fail("run", &e);
+  getrusage(RUSAGE_SELF, &ru);
+  double cpu = (double)(ru.ru_utime.tv_sec - ru0.ru_utime.tv_sec) +
+               1e-6 * (double)(ru.ru_utime.tv_usec - ru0.ru_utime.tv_usec) +
+               (double)(ru.ru_stime.tv_sec - ru0.ru_stime.tv_sec) +
+               1e-6 * (double)(ru.ru_stime.tv_usec - ru0.ru_stime.tv_usec);
   dem_sim_stats st;
   dem_sim_get_stats(sim, &st);
-  struct rusage ru;
-  getrusage(RUSAGE_SELF, &ru);
   double pss = (double)n * (double)steps / st.loop_seconds;
   double cpp = (double)(2 * st.contacts + st.wall_contacts) / (double)n;
   if (json) {
@@ -202,6 +207,7 @@ int main(int argc, char **argv) {
     json_object_set_new(o, "seconds", json_real(st.loop_seconds));
     json_object_set_new(o, "particle_steps_per_s", json_real(pss));
     json_object_set_new(o, "peak_rss_kb", json_integer(ru.ru_maxrss));
+    json_object_set_new(o, "cpu_seconds", json_real(cpu));
     json_object_set_new(o, "contacts_per_particle", json_real(cpp));
     json_object_set_new(o, "rebuilds", json_integer(st.rebuilds));
     json_object_set_new(o, "tangential", json_boolean(have_tangential));
@@ -215,6 +221,8 @@ int main(int argc, char **argv) {
            st.loop_seconds, st.rebuilds, st.sorts, st.pairs, cpp);
     printf("tangential friction: %s\n", have_tangential ? "on (Mindlin, mu = 0.3)" : "OFF");
     printf("peak RSS %ld kB  engine memory %.1f MB\n", ru.ru_maxrss, st.bytes / 1048576.0);
+    printf("cpu time %.3f s (all threads; %.4g particle-steps per cpu-second)\n", cpu,
+           (double)n * (double)steps / cpu);
     printf("%.4g particle-steps/s\n", pss);
   }
   dem_sim_free(sim);

@@ -48,8 +48,17 @@ void dem_engine_partition(dem_sim *s) {
 
 int dem_engine_spill_reserve(dem_sim *s, dem_err *err) {
   const dem_nlist *l = &s->nl;
+  size_t maxrow = 1;
+  for (size_t i = 0; i < l->n; i++)
+    if (l->first[i + 1] - l->first[i] > maxrow) maxrow = l->first[i + 1] - l->first[i];
   for (int t = 0; t < s->nthreads; t++) {
     dem_tdata *td = &s->td[t];
+    if (2 * maxrow > td->cap_cand) {
+      uint32_t *c = realloc(td->cand, 2 * maxrow * sizeof *c);
+      if (!c) return dem_err_set(err, DEM_ENOMEM, "force scratch: out of memory");
+      td->cand = c;
+      td->cap_cand = 2 * maxrow;
+    }
     size_t cnt = 0;
     for (size_t i = td->row_begin; i < td->row_end; i++)
       for (uint32_t q = l->first[i]; q < l->first[i + 1]; q++) cnt += l->nbr[q] >= td->row_end;
@@ -90,17 +99,35 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
     const int mati = mat[i];
     double fi[3] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
     double ti[3] = {tq[3 * i], tq[3 * i + 1], tq[3 * i + 2]};
-    for (uint32_t q = first[i]; q < first[i + 1]; q++) {
+    /* Pass 1 (branch-free): the pairs that need the law (overlapping, or a live state
+     * word) go to cand[0..m); pairs apart whose spring is still loaded go to the tail. */
+    const uint32_t q0 = first[i], q1 = first[i + 1];
+    uint32_t *restrict cand = td->cand;
+    uint32_t m = 0, z = q1 - q0;
+    for (uint32_t q = q0; q < q1; q++) {
+      const size_t j = nbr[q];
+      const double *h = hist + (size_t)q * nh;
+      const double dx = xi0 - x[3 * j], dy = xi1 - x[3 * j + 1], dz = xi2 - x[3 * j + 2];
+      const double rs = ri + rad[j];
+      const int c = (dx * dx + dy * dy + dz * dz < rs * rs) | (h[0] != 0.0);
+      const int stale = (c ^ 1) & ((h[hoff] != 0.0) | (h[hoff + 1] != 0.0) | (h[hoff + 2] != 0.0));
+      cand[m] = q;
+      m += (uint32_t)c;
+      cand[z] = q;
+      z += (uint32_t)stale;
+    }
+    for (uint32_t k = q1 - q0; k < z; k++) {
+      double *xs = hist + (size_t)cand[k] * nh + hoff;
+      xs[0] = xs[1] = xs[2] = 0.0;
+    }
+    /* Pass 2: the contacts. */
+    for (uint32_t kc = 0; kc < m; kc++) {
+      const uint32_t q = cand[kc];
       const size_t j = nbr[q];
       double *restrict h = hist + (size_t)q * nh;
       const double dx = xi0 - x[3 * j], dy = xi1 - x[3 * j + 1], dz = xi2 - x[3 * j + 2];
       const double r2 = dx * dx + dy * dy + dz * dz;
       const double rj = rad[j], rs = ri + rj;
-      if (r2 >= rs * rs && h[0] == 0.0) {
-        double *xi = h + hoff;
-        if (xi[0] != 0.0 || xi[1] != 0.0 || xi[2] != 0.0) xi[0] = xi[1] = xi[2] = 0.0;
-        continue;
-      }
       const dem_inter *in = dem_engine_inter(s, mati, mat[j]);
       const double r = sqrt(r2);
       const double inv = r > 0.0 ? 1.0 / r : 0.0;

@@ -22,6 +22,9 @@ typedef struct dem_wall {
   double f[3], t[3];        /* N, N m: load on the wall of the last force evaluation */
   double work;              /* J, work done by the wall on the particles */
   double *hist;             /* [cap * nh] history of each particle against this wall */
+  uint32_t *list;           /* particles within reach at the last build, ascending */
+  size_t nlist, cap_list;
+  double p_build[3];        /* m, the wall point at the last build */
 } dem_wall;
 
 /* Half Verlet list in CSR form: the neighbours j > i of particle i are
@@ -45,6 +48,8 @@ typedef struct dem_tdata {
   size_t row_begin, row_end;     /* rows (particles) owned by the thread */
   dem_spill *spill;              /* forces on particles beyond row_end */
   size_t nspill, cap_spill;
+  uint32_t *cand;                /* scratch: a row's candidate contacts / stale springs */
+  size_t cap_cand;
   double wf[DEM_ENGINE_MAX_WALLS][3], wt[DEM_ENGINE_MAX_WALLS][3];
   double wpow[DEM_ENGINE_MAX_WALLS]; /* W, power of the wall on the particles */
   size_t contacts, wall_contacts;
@@ -103,6 +108,12 @@ void dem_nlist_free(dem_nlist *l);
 double dem_wall_gap(const dem_wall_spec *w, const double x[3], double r, double n[3],
                     double *rfac);
 void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1);
+/* Wall neighbour lists: the particles whose surface is within `skin` of the wall (or whose
+ * history with the wall is active). Valid while particles move < skin/2 and the wall moves
+ * < skin/2 since the build. */
+int dem_engine_wall_lists(dem_sim *s, dem_err *err);
+/* 1 if some wall moved more than skin/2 since the last build */
+int dem_engine_walls_moved(const dem_sim *s);
 
 /* force.c */
 void dem_engine_pair_forces(dem_sim *s, dem_tdata *td);

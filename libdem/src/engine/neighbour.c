@@ -291,6 +291,7 @@ int dem_engine_build(dem_sim *s, dem_err *err) {
   nl->n = n;
   nl->npairs = np;
   memcpy(s->x0, p->x, 3 * n * sizeof(double));
+  if ((rc = dem_engine_wall_lists(s, err))) return rc;
   s->st.rebuilds++;
   s->need_build = 0;
   dem_engine_partition(s);

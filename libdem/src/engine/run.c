@@ -216,7 +216,7 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
     }
     for (int w = 0; w < s->nwall; w++)
       for (int k = 0; k < 3; k++) s->wall[w].spec.p[k] += s->dt * s->wall[w].spec.v[k];
-    if (md2 > half_skin2 || !(md2 == md2)) {
+    if (md2 > half_skin2 || !(md2 == md2) || dem_engine_walls_moved(s)) {
       if ((rc = dem_engine_build(s, err))) {
         s->st.loop_seconds += now_s() - t0;
         return rc;

@@ -41,7 +41,10 @@ void dem_sim_free(dem_sim *s) {
   free(p->material);
   free(p->id);
   free(s->x0);
-  for (int w = 0; w < s->nwall; w++) free(s->wall[w].hist);
+  for (int w = 0; w < s->nwall; w++) {
+    free(s->wall[w].hist);
+    free(s->wall[w].list);
+  }
   dem_nlist_free(&s->nl);
   dem_nlist_free(&s->nl_old);
   free(s->cell_first);
@@ -50,7 +53,10 @@ void dem_sim_free(dem_sim *s) {
   free(s->perm);
   free(s->iperm);
   free(s->tmp);
-  for (int t = 0; t < DEM_MAX_THREADS; t++) free(s->td[t].spill);
+  for (int t = 0; t < DEM_MAX_THREADS; t++) {
+    free(s->td[t].spill);
+    free(s->td[t].cand);
+  }
   free(s);
 }
 
@@ -192,7 +198,9 @@ size_t dem_engine_bytes(const dem_sim *s) {
     b += (ls[k]->cap_rows + 1) * sizeof(uint32_t) +
          ls[k]->cap_pairs * (sizeof(uint32_t) + (size_t)s->nh * sizeof(double));
   b += (s->ncell_cap + 1) * sizeof(uint32_t);
-  for (int t = 0; t < DEM_MAX_THREADS; t++) b += s->td[t].cap_spill * sizeof(dem_spill);
+  for (int t = 0; t < DEM_MAX_THREADS; t++)
+    b += s->td[t].cap_spill * sizeof(dem_spill) + s->td[t].cap_cand * sizeof(uint32_t);
+  for (int w = 0; w < s->nwall; w++) b += s->wall[w].cap_list * sizeof(uint32_t);
   return b;
 }
 

@@ -56,6 +56,7 @@ int dem_sim_add_wall(dem_sim *s, const dem_wall_spec *w, int *index, dem_err *er
   s->wall[s->nwall] = nw;
   if (index) *index = s->nwall;
   s->nwall++;
+  s->need_build = 1;
   return DEM_OK;
 }
 
@@ -134,6 +135,62 @@ static inline void cross(const double a[3], const double b[3], double c[3]) {
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+static int block_active(const double *h, int nh) {
+  for (int k = 0; k < nh; k++)
+    if (h[k] != 0.0) return 1;
+  return 0;
+}
+
+int dem_engine_wall_lists(dem_sim *s, dem_err *err) {
+  const dem_particles *p = &s->p;
+  for (int w = 0; w < s->nwall; w++) {
+    dem_wall *wl = &s->wall[w];
+    size_t m = 0;
+    for (size_t i = 0; i < p->n; i++) {
+      double n[3], rfac;
+      double alpha = dem_wall_gap(&wl->spec, p->x + 3 * i, p->radius[i], n, &rfac);
+      if (alpha > -s->skin || block_active(wl->hist + i * (size_t)s->nh, s->nh)) {
+        if (m == wl->cap_list) {
+          size_t c = wl->cap_list ? 2 * wl->cap_list : 256;
+          uint32_t *l = realloc(wl->list, c * sizeof *l);
+          if (!l) return dem_err_set(err, DEM_ENOMEM, "wall %d: out of memory", w);
+          wl->list = l;
+          wl->cap_list = c;
+        }
+        wl->list[m++] = (uint32_t)i;
+      } else {
+        /* out of reach: a contact that ended long ago leaves nothing behind */
+        double *h = wl->hist + i * (size_t)s->nh;
+        h[s->hoff] = h[s->hoff + 1] = h[s->hoff + 2] = 0.0;
+      }
+    }
+    wl->nlist = m;
+    for (int k = 0; k < 3; k++) wl->p_build[k] = wl->spec.p[k];
+  }
+  return DEM_OK;
+}
+
+int dem_engine_walls_moved(const dem_sim *s) {
+  const double lim = 0.25 * s->skin * s->skin;
+  for (int w = 0; w < s->nwall; w++) {
+    const dem_wall *wl = &s->wall[w];
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++) d2 += (wl->spec.p[k] - wl->p_build[k]) * (wl->spec.p[k] - wl->p_build[k]);
+    if (d2 > lim) return 1;
+  }
+  return 0;
+}
+
+static size_t lower_bound(const uint32_t *a, size_t n, size_t key) {
+  size_t lo = 0, hi = n;
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (a[mid] < key) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
 /* Wall forces on particles [i0, i1), added to f and torque; the loads on the walls go to
  * the thread's accumulators. */
 void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
@@ -145,7 +202,10 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
     const dem_wall *wl = &s->wall[wi];
     const dem_wall_spec *ws = &wl->spec;
     double wf[3] = {0, 0, 0}, wt[3] = {0, 0, 0}, pow_ = 0.0;
-    for (size_t i = i0; i < i1; i++) {
+    const size_t k0 = lower_bound(wl->list, wl->nlist, i0);
+    const size_t k1 = lower_bound(wl->list, wl->nlist, i1);
+    for (size_t kk = k0; kk < k1; kk++) {
+      const size_t i = wl->list[kk];
       const double *x = p->x + 3 * i, ri = p->radius[i];
       double *h = wl->hist + i * (size_t)nh;
       double n[3], rfac;
