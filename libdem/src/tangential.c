@@ -63,9 +63,10 @@ int dem_tangential_setup(dem_tangential *t, dem_tangential_kind kind, const dem_
     if (rc) return rc;
   } else {
     double E, nu, E2, nu2;
-    if ((rc = get_key(ps, what, "E", "Pa", 0.0, 1, 1e15, NAN, &E, err))) return rc;
+    if ((rc = get_key(ps, what, "E", "Pa", 0.0, 1, 1e30, NAN, &E, err))) return rc;
     if ((rc = get_key(ps, what, "nu", "-", -1.0, 1, 0.5, NAN, &nu, err))) return rc;
-    if ((rc = get_key(ps, what, "wall_E", "Pa", 0.0, 1, 1e15, E, &E2, err))) return rc;
+    /* wall_E = 1e30 stands for a rigid wall (dem_params holds finite values only). */
+    if ((rc = get_key(ps, what, "wall_E", "Pa", 0.0, 1, 1e30, E, &E2, err))) return rc;
     if ((rc = get_key(ps, what, "wall_nu", "-", -1.0, 1, 0.5, nu, &nu2, err))) return rc;
     t->G = dem_reduced_shear_modulus(E, nu, E2, nu2);
   }

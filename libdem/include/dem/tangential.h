@@ -88,8 +88,9 @@ inline int dem_tangential_force(const dem_tangential *t, double xi[3], const dou
                                 const double vt[3], double dt, double R, double alpha_eff,
                                 double m, double fn, double f_adh, double ft[3]) {
   /* Stiffness: the kind is loop-invariant, so this select is perfectly predicted. */
-  double k = t->kind == DEM_TANGENTIAL_MINDLIN ? 8.0 * t->G * sqrt(R * fmax(alpha_eff, 0.0))
-                                               : t->kt;
+  /* (Ternaries, not fmax: without -ffinite-math-only fmax is a library call.) */
+  double ae = alpha_eff > 0.0 ? alpha_eff : 0.0;
+  double k = t->kind == DEM_TANGENTIAL_MINDLIN ? 8.0 * t->G * sqrt(R * ae) : t->kt;
   k = t->kind == DEM_TANGENTIAL_NONE ? 0.0 : k;
   /* Rotate into the current tangent plane, keeping |xi|. */
   double m0 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
@@ -102,7 +103,8 @@ inline int dem_tangential_force(const dem_tangential *t, double xi[3], const dou
   double v[3] = {vt[0] - vn * n[0], vt[1] - vn * n[1], vt[2] - vn * n[2]};
   for (int i = 0; i < 3; i++) xi[i] = sc * p[i] + v[i] * dt;
   /* Coulomb limit with the adhesive contribution (thesis 4.27-4.28, 3.49). */
-  double flim = (t->kind == DEM_TANGENTIAL_NONE ? 0.0 : t->mu) * fmax(fn + f_adh, 0.0);
+  double cap = fn + f_adh;
+  double flim = (t->kind == DEM_TANGENTIAL_NONE ? 0.0 : t->mu) * (cap > 0.0 ? cap : 0.0);
   double fs = k * sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
   int slide = fs > flim;
   /* Sliding: shorten the spring so that k |xi| = F_lim (k = 0 never slides: fs = 0). */
@@ -136,7 +138,7 @@ static inline double dem_rolling_omega_eps(double mu_r, double fn_abs, double R_
 inline void dem_rolling_torque(const dem_rolling *r, const double w_rel[3], double fn_abs,
                                double R_i, double w_eps, double m_out[3]) {
   double w = sqrt(w_rel[0] * w_rel[0] + w_rel[1] * w_rel[1] + w_rel[2] * w_rel[2]);
-  double d = fmax(w, w_eps);
+  double d = w > w_eps ? w : w_eps;
   double g = d > 0.0 ? -r->mu_r * fabs(fn_abs) * R_i / d : 0.0;
   for (int i = 0; i < 3; i++) m_out[i] = g * w_rel[i];
 }
