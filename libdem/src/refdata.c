@@ -203,6 +203,7 @@ void dem_refdata_free(dem_reftable *t) {
 
 static int check_required(const dem_reftable *t, const dem_refcol *req, int nreq,
                           dem_err *err) {
+  if (!req) nreq = 0;
   for (int i = 0; i < nreq; i++) {
     int c = dem_refdata_column(t, req[i].name);
     if (c < 0) {
