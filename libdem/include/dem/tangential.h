@@ -97,7 +97,7 @@ inline int dem_tangential_force(const dem_tangential *t, double xi[3], const dou
   double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
   double p[3] = {xi[0] - xn * n[0], xi[1] - xn * n[1], xi[2] - xn * n[2]};
   double m1 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-  double sc = m1 > 0.0 ? sqrt(m0 / m1) : 0.0;
+  double sc = m1 > 0.0 ? sqrt(m0 / m1) : 0.0; /* xi along n (a 90-degree turn): spring lost */
   /* Tangential part of the relative velocity and the spring increment. */
   double vn = vt[0] * n[0] + vt[1] * n[1] + vt[2] * n[2];
   double v[3] = {vt[0] - vn * n[0], vt[1] - vn * n[1], vt[2] - vn * n[2]};
