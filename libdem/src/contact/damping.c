@@ -131,6 +131,15 @@ done:
   return result;
 }
 
+double dem_damping_restitution_hertz(double eta, int clipped) {
+  if (!(eta >= 0.0) || !isfinite(eta)) return -1.0;
+  if (eta == 0.0) return 1.0;
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  double e = hz_restitution(eta, clipped);
+  gsl_set_error_handler(old);
+  return e;
+}
+
 typedef struct {
   double e;
   int clipped;
