@@ -149,12 +149,7 @@ int main(int argc, char **argv) {
   if (dem_sim_add_material(sim, 2500.0, &mat_p, &e) ||
       dem_sim_add_material(sim, 2500.0, &mat_w, &e))
     return fail("material", &e);
-#ifdef DEM_HAVE_TANGENTIAL
   int trc = dem_tangential_setup(&tg, DEM_TANGENTIAL_MINDLIN, &ps, &e);
-#else
-  int trc = dem_err_set(&e, DEM_EUNSUPPORTED, "dem_tangential_setup is not implemented yet");
-  memset(&tg, 0, sizeof tg);
-#endif
   if (trc || dem_sim_set_interaction(sim, mat_p, mat_p, &ct, &tg, NULL, &e) ||
       dem_sim_set_interaction(sim, mat_p, mat_w, &ct, &tg, NULL, &e)) {
     have_tangential = 0;

@@ -9,7 +9,9 @@
  *   R* = r_i r_j / (r_i + r_j), m* = m_i m_j / (m_i + m_j)   (thesis eq 3.16)
  * Force on i: F = f_n n + F_t (f_n from the law, > 0 repulsive; F_t from dem/tangential.h);
  * on j: -F. Torques: T_i = -r_i n x F_t, T_j = -r_j n x F_t; rolling M_i from
- * dem_rolling_torque with w_rel = w_i - w_j, M_j = -M_i r_j / r_i.
+ * dem_rolling_torque with w_rel = w_i - w_j, M_j = -M_i r_j / r_i, regularised below
+ * w_eps = dem_rolling_omega_eps (relative-rotation inertia) so that one step never
+ * reverses the relative spin.
  *
  * Parallel scheme (docs/engine.md): the particles are in cell order and thread t owns a
  * contiguous range of rows [a_t, b_t), balanced by pair count. Because j > i >= a_t, thread
@@ -25,7 +27,6 @@
 
 #include "internal.h"
 
-#define DEM_ROLL_W_EPS 1e-9 /* rad/s: below this relative spin no rolling torque */
 
 void dem_engine_partition(dem_sim *s) {
   const dem_nlist *l = &s->nl;
@@ -82,7 +83,8 @@ static inline void cross(const double a[3], const double b[3], double c[3]) {
 void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
   const dem_particles *p = &s->p;
   const double *restrict x = p->x, *restrict v = p->v, *restrict w = p->omega;
-  const double *restrict rad = p->radius, *restrict mass = p->mass;
+  const double *restrict rad = p->radius;
+  const double *restrict invr = s->invr, *restrict invm = s->invm;
   const int *restrict mat = p->material;
   double *restrict f = p->f, *restrict tq = p->torque;
   const uint32_t *restrict first = s->nl.first, *restrict nbr = s->nl.nbr;
@@ -95,7 +97,7 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
 
   for (size_t i = a; i < b; i++) {
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
-    const double ri = rad[i], mi = mass[i];
+    const double ri = rad[i], ir = invr[i], im = invm[i];
     const int mati = mat[i];
     double fi[3] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
     double ti[3] = {tq[3 * i], tq[3 * i + 1], tq[3 * i + 2]};
@@ -134,8 +136,9 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       const double n[3] = {r > 0.0 ? dx * inv : 0.0, r > 0.0 ? dy * inv : 0.0,
                            r > 0.0 ? dz * inv : 1.0};
       const double alpha = rs - r;
-      const double mj = mass[j];
-      dem_geom g = {ri * rj / rs, mi * mj / (mi + mj)};
+      /* R* = 1/(1/r_i + 1/r_j), m* = 1/(1/m_i + 1/m_j) with one division */
+      const double sr = ir + invr[j], sm = im + invm[j], d = 1.0 / (sr * sm);
+      dem_geom g = {sm * d, sr * d};
       const double *vi = v + 3 * i, *vj = v + 3 * j, *wi = w + 3 * i, *wj = w + 3 * j;
       const double vr[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
       const double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
@@ -149,19 +152,18 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       }
       contacts++;
       {
-        double ov = alpha / (ri < rj ? ri : rj);
+        double ov = alpha * (ir > invr[j] ? ir : invr[j]); /* alpha / min(r_i, r_j) */
         max_ov = ov > max_ov ? ov : max_ov;
       }
       double F[3] = {out.f * n[0], out.f * n[1], out.f * n[2]};
       double tqi[3] = {0.0, 0.0, 0.0}, tqj[3] = {0.0, 0.0, 0.0};
-#ifdef DEM_HAVE_TANGENTIAL
       if (in->tang.kind != DEM_TANGENTIAL_NONE && out.contact) {
         const double ws[3] = {ri * wi[0] + rj * wj[0], ri * wi[1] + rj * wj[1],
                               ri * wi[2] + rj * wj[2]};
         double wxn[3];
         cross(ws, n, wxn);
-        const double vt[3] = {vr[0] - vn * n[0] - wxn[0], vr[1] - vn * n[1] - wxn[1],
-                              vr[2] - vn * n[2] - wxn[2]};
+        /* contact-point relative velocity; dem_tangential_force drops its normal part */
+        const double vt[3] = {vr[0] - wxn[0], vr[1] - wxn[1], vr[2] - wxn[2]};
         double ft[3], nxf[3];
         dem_tangential_force(&in->tang, h + hoff, n, vt, dt, g.R, alpha > 0.0 ? alpha : 0.0,
                              g.m, out.f, out.f_adh, ft);
@@ -177,19 +179,16 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       if (in->roll.mu_r > 0.0 && out.contact) {
         const double wrel[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
         double mr[3];
-        dem_rolling_torque(&in->roll, wrel, fabs(out.f), ri, DEM_ROLL_W_EPS, mr);
+        /* regularisation: the relative-rotation inertia (dem/tangential.h) */
+        const double Irel = 1.0 / (s->invI[i] + rj * ir * s->invI[j]);
+        const double weps = dem_rolling_omega_eps(in->roll.mu_r, fabs(out.f), ri, Irel, dt);
+        dem_rolling_torque(&in->roll, wrel, fabs(out.f), ri, weps, mr);
         const double sc = rj / ri;
         for (int k = 0; k < 3; k++) {
           tqi[k] += mr[k];
           tqj[k] -= sc * mr[k];
         }
       }
-#else
-      (void)wi;
-      (void)wj;
-      (void)dt;
-      (void)cross;
-#endif
       for (int k = 0; k < 3; k++) {
         fi[k] += F[k];
         ti[k] += tqi[k];

@@ -62,6 +62,7 @@ struct dem_sim {
   dem_particles p;
   size_t cap;                    /* allocated particles */
   double *x0;                    /* m, positions at the last neighbour-list build [3cap] */
+  double *invr, *invm, *invI;    /* 1/m, 1/kg, 1/(kg m^2): refreshed at every build [cap] */
 
   int nmat;
   double rho[DEM_ENGINE_MAX_MATERIALS];

@@ -291,6 +291,11 @@ int dem_engine_build(dem_sim *s, dem_err *err) {
   nl->n = n;
   nl->npairs = np;
   memcpy(s->x0, p->x, 3 * n * sizeof(double));
+  for (size_t i = 0; i < n; i++) {
+    s->invr[i] = 1.0 / p->radius[i];
+    s->invm[i] = 1.0 / p->mass[i];
+    s->invI[i] = 1.0 / p->inertia[i];
+  }
   if ((rc = dem_engine_wall_lists(s, err))) return rc;
   s->st.rebuilds++;
   s->need_build = 0;

@@ -30,6 +30,9 @@ int dem_engine_grow(dem_sim *s, size_t cap, dem_err *err) {
            grow_array((void **)&p->material, sizeof(int), cap) &&
            grow_array((void **)&p->id, sizeof(uint32_t), cap) &&
            grow_array((void **)&s->x0, 3 * sizeof(double), cap) &&
+           grow_array((void **)&s->invr, sizeof(double), cap) &&
+           grow_array((void **)&s->invm, sizeof(double), cap) &&
+           grow_array((void **)&s->invI, sizeof(double), cap) &&
            grow_array((void **)&s->cell_idx, sizeof(uint32_t), cap) &&
            grow_array((void **)&s->cell_of, sizeof(uint32_t), cap) &&
            grow_array((void **)&s->perm, sizeof(uint32_t), cap) &&

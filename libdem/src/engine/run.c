@@ -100,8 +100,9 @@ static void half_kick(dem_sim *s, size_t a, size_t b) {
   const double h = 0.5 * s->dt;
   double *restrict v = p->v, *restrict w = p->omega;
   const double *restrict f = p->f, *restrict t = p->torque;
+  const double *restrict invm = s->invm, *restrict invI = s->invI;
   for (size_t i = a; i < b; i++) {
-    const double cm = h / p->mass[i], ci = h / p->inertia[i];
+    const double cm = h * invm[i], ci = h * invI[i];
     for (int k = 0; k < 3; k++) {
       v[3 * i + k] += cm * f[3 * i + k];
       w[3 * i + k] += ci * t[3 * i + k];

@@ -41,6 +41,9 @@ void dem_sim_free(dem_sim *s) {
   free(p->material);
   free(p->id);
   free(s->x0);
+  free(s->invr);
+  free(s->invm);
+  free(s->invI);
   for (int w = 0; w < s->nwall; w++) {
     free(s->wall[w].hist);
     free(s->wall[w].list);
@@ -88,13 +91,6 @@ int dem_sim_set_interaction(dem_sim *s, int a, int b, const dem_contact *normal,
   if (r && !(r->mu_r >= 0.0 && isfinite(r->mu_r)))
     return dem_err_set(err, DEM_ERANGE, "interaction (%d, %d): mu_r = %g (allowed >= 0)", a, b,
                        r->mu_r);
-#ifndef DEM_HAVE_TANGENTIAL
-  if ((t && t->kind != DEM_TANGENTIAL_NONE) || (r && r->mu_r > 0.0))
-    return dem_err_set(err, DEM_EUNSUPPORTED,
-                       "interaction (%d, %d): tangential friction / rolling resistance are not "
-                       "in this build yet (dem/tangential.h has no implementation)",
-                       a, b);
-#endif
   dem_inter in;
   memset(&in, 0, sizeof in);
   in.set = 1;

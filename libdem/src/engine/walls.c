@@ -20,7 +20,6 @@
 
 #include "internal.h"
 
-#define DEM_ROLL_W_EPS 1e-9 /* rad/s */
 
 static int normalise(double n[3]) {
   double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -230,13 +229,11 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
       contacts++;
       max_ov = alpha / ri > max_ov ? alpha / ri : max_ov;
       double F[3] = {out.f * n[0], out.f * n[1], out.f * n[2]}, T[3] = {0, 0, 0};
-#ifdef DEM_HAVE_TANGENTIAL
       if (in->tang.kind != DEM_TANGENTIAL_NONE && out.contact) {
         double wxn[3], ft[3], nxf[3];
         const double ws3[3] = {ri * w[0], ri * w[1], ri * w[2]};
         cross(ws3, n, wxn);
-        const double vt[3] = {vr[0] - vn * n[0] - wxn[0], vr[1] - vn * n[1] - wxn[1],
-                              vr[2] - vn * n[2] - wxn[2]};
+        const double vt[3] = {vr[0] - wxn[0], vr[1] - wxn[1], vr[2] - wxn[2]};
         dem_tangential_force(&in->tang, h + hoff, n, vt, s->dt, g.R,
                              alpha > 0.0 ? alpha : 0.0, g.m, out.f, out.f_adh, ft);
         cross(n, ft, nxf);
@@ -247,15 +244,14 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
       }
       if (in->roll.mu_r > 0.0 && out.contact) {
         double mr[3];
-        dem_rolling_torque(&in->roll, w, fabs(out.f), ri, DEM_ROLL_W_EPS, mr);
+        const double weps =
+            dem_rolling_omega_eps(in->roll.mu_r, fabs(out.f), ri, p->inertia[i], s->dt);
+        dem_rolling_torque(&in->roll, w, fabs(out.f), ri, weps, mr);
         for (int k = 0; k < 3; k++) {
           T[k] += mr[k];
           wt[k] -= mr[k];
         }
       }
-#else
-      (void)w;
-#endif
       for (int k = 0; k < 3; k++) {
         p->f[3 * i + k] += F[k];
         p->torque[3 * i + k] += T[k];
