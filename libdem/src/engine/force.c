@@ -89,7 +89,8 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
   double *restrict f = p->f, *restrict tq = p->torque;
   const uint32_t *restrict first = s->nl.first, *restrict nbr = s->nl.nbr;
   double *restrict hist = s->nl.hist;
-  const int nh = s->nh, hoff = s->hoff;
+  uint8_t *restrict touch = s->nl.touch;
+  const int nh = s->nh, hoff = s->hoff, need_state = s->need_state;
   const double dt = s->dt;
   const size_t a = td->row_begin, b = td->row_end;
   size_t contacts = 0, nspill = 0;
@@ -102,17 +103,19 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
     double fi[3] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
     double ti[3] = {tq[3 * i], tq[3 * i + 1], tq[3 * i + 2]};
     /* Pass 1 (branch-free): the pairs that need the law (overlapping, or a live state
-     * word) go to cand[0..m); pairs apart whose spring is still loaded go to the tail. */
+     * word of an adhesive/plastic law) go to cand[0..m); pairs apart whose spring may
+     * still be loaded (touch[q]) go to the tail and are reset. Pairs apart that were
+     * apart before touch nothing but the positions. */
     const uint32_t q0 = first[i], q1 = first[i + 1];
     uint32_t *restrict cand = td->cand;
     uint32_t m = 0, z = q1 - q0;
     for (uint32_t q = q0; q < q1; q++) {
       const size_t j = nbr[q];
-      const double *h = hist + (size_t)q * nh;
       const double dx = xi0 - x[3 * j], dy = xi1 - x[3 * j + 1], dz = xi2 - x[3 * j + 2];
       const double rs = ri + rad[j];
-      const int c = (dx * dx + dy * dy + dz * dz < rs * rs) | (h[0] != 0.0);
-      const int stale = (c ^ 1) & ((h[hoff] != 0.0) | (h[hoff + 1] != 0.0) | (h[hoff + 2] != 0.0));
+      int c = dx * dx + dy * dy + dz * dz < rs * rs;
+      if (need_state) c |= hist[(size_t)q * nh] != 0.0;
+      const int stale = (c ^ 1) & touch[q];
       cand[m] = q;
       m += (uint32_t)c;
       cand[z] = q;
@@ -121,6 +124,7 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
     for (uint32_t k = q1 - q0; k < z; k++) {
       double *xs = hist + (size_t)cand[k] * nh + hoff;
       xs[0] = xs[1] = xs[2] = 0.0;
+      touch[cand[k]] = 0;
     }
     /* Pass 2: the contacts. */
     for (uint32_t kc = 0; kc < m; kc++) {
@@ -145,6 +149,7 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       if (h[0] == 0.0 && in->normal.law->init) dem_contact_init(&in->normal, &g, h, NULL);
       dem_normal out;
       in->normal.law->force(in->normal.c, &g, h, alpha, -vn, &out);
+      touch[q] = (uint8_t)out.contact;
       if (!out.contact) {
         double *xi = h + hoff;
         xi[0] = xi[1] = xi[2] = 0.0;

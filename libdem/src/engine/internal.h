@@ -36,6 +36,8 @@ typedef struct dem_nlist {
   uint32_t *first;          /* [n + 1] */
   uint32_t *nbr;            /* [npairs] */
   double *hist;             /* [npairs * nh] */
+  uint8_t *touch;           /* [npairs] 1 if the pair's spring may be loaded (in contact at
+                               the last evaluation, or carried over non-zero) */
 } dem_nlist;
 
 /* Per-thread scratch of the force loop. */
@@ -69,6 +71,8 @@ struct dem_sim {
   dem_inter inter[DEM_ENGINE_MAX_MATERIALS][DEM_ENGINE_MAX_MATERIALS];
   int hoff;                      /* offset of the tangential spring in a history block */
   int nh;                        /* doubles per history block (0 until the first build) */
+  int need_state;                /* some law in use is adhesive or plastic: a pair apart
+                                    with a live state word still needs the law */
 
   int nwall;
   dem_wall wall[DEM_ENGINE_MAX_WALLS];

@@ -21,6 +21,7 @@ void dem_nlist_free(dem_nlist *l) {
   free(l->first);
   free(l->nbr);
   free(l->hist);
+  free(l->touch);
   memset(l, 0, sizeof *l);
 }
 
@@ -40,6 +41,9 @@ static int nlist_reserve(dem_nlist *l, size_t rows, size_t pairs, int nh) {
     double *h = realloc(l->hist, c * (size_t)nh * sizeof *h);
     if (!h) return DEM_ENOMEM;
     l->hist = h;
+    uint8_t *t = realloc(l->touch, c);
+    if (!t) return DEM_ENOMEM;
+    l->touch = t;
     l->cap_pairs = c;
   }
   return DEM_OK;
@@ -278,12 +282,15 @@ int dem_engine_build(dem_sim *s, dem_err *err) {
     /* histories: merge with the previous row i (both sorted by j) */
     double *h = nl->hist + (size_t)nl->first[i] * nh;
     memset(h, 0, (np - nl->first[i]) * nh * sizeof(double));
+    memset(nl->touch + nl->first[i], 0, np - nl->first[i]);
     if (have_old) {
       uint32_t q = old->first[i], qe = old->first[i + 1];
       for (size_t r = nl->first[i]; r < np && q < qe; r++) {
         while (q < qe && old->nbr[q] < nl->nbr[r]) q++;
-        if (q < qe && old->nbr[q] == nl->nbr[r])
+        if (q < qe && old->nbr[q] == nl->nbr[r]) {
           memcpy(nl->hist + r * nh, old->hist + (size_t)q * nh, nh * sizeof(double));
+          nl->touch[r] = (uint8_t)block_active(nl->hist + r * nh, nh);
+        }
       }
     }
   }

@@ -44,6 +44,12 @@ static int thread_id(void) {
 /* Every material pair that can meet needs an interaction. */
 static int check_ready(dem_sim *s, dem_err *err) {
   if (!(s->dt > 0.0)) return dem_err_set(err, DEM_EMISSING, "dt is not set");
+  s->need_state = 0;
+  for (int a = 0; a < s->nmat; a++)
+    for (int b = 0; b < s->nmat; b++)
+      if (s->inter[a][b].set &&
+          (s->inter[a][b].normal.law->flags & (DEM_LAW_ADHESIVE | DEM_LAW_PLASTIC)))
+        s->need_state = 1;
   int used[DEM_ENGINE_MAX_MATERIALS] = {0};
   for (size_t i = 0; i < s->p.n; i++) used[s->p.material[i]] = 1;
   for (int a = 0; a < s->nmat; a++) {
