@@ -3,12 +3,14 @@
  * Geometry of a pair (i, j), n the unit normal from j to i, r = |x_i - x_j|:
  *   overlap      alpha = r_i + r_j - r                      (m, > 0 compression)
  *   approach     alpha_dot = -(v_i - v_j) . n               (m/s, > 0 approaching)
- *   contact-point relative velocity (contact point at distance r_i from centre i):
- *                v_c = v_i - v_j - (r_i w_i + r_j w_j) x n
+ *   contact point in the middle of the overlap, at a_i = r_i - alpha/2 from centre i and
+ *   a_j = r_j - alpha/2 from centre j (the same point for both, so angular momentum is
+ *   conserved exactly); its relative velocity
+ *                v_c = v_i - v_j - (a_i w_i + a_j w_j) x n
  *   tangential   v_t = v_c - (v_c . n) n
  *   R* = r_i r_j / (r_i + r_j), m* = m_i m_j / (m_i + m_j)   (thesis eq 3.16)
  * Force on i: F = f_n n + F_t (f_n from the law, > 0 repulsive; F_t from dem/tangential.h);
- * on j: -F. Torques: T_i = -r_i n x F_t, T_j = -r_j n x F_t; rolling M_i from
+ * on j: -F. Torques: T_i = -a_i n x F_t, T_j = -a_j n x F_t; rolling M_i from
  * dem_rolling_torque with w_rel = w_i - w_j, M_j = -M_i r_j / r_i, regularised below
  * w_eps = dem_rolling_omega_eps (relative-rotation inertia) so that one step never
  * reverses the relative spin.
@@ -163,8 +165,11 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       double F[3] = {out.f * n[0], out.f * n[1], out.f * n[2]};
       double tqi[3] = {0.0, 0.0, 0.0}, tqj[3] = {0.0, 0.0, 0.0};
       if (in->tang.kind != DEM_TANGENTIAL_NONE && out.contact) {
-        const double ws[3] = {ri * wi[0] + rj * wj[0], ri * wi[1] + rj * wj[1],
-                              ri * wi[2] + rj * wj[2]};
+        /* branch vectors to the middle of the overlap: both bodies share the contact
+         * point, so the torques conserve angular momentum exactly */
+        const double ai = ri - 0.5 * alpha, aj = rj - 0.5 * alpha;
+        const double ws[3] = {ai * wi[0] + aj * wj[0], ai * wi[1] + aj * wj[1],
+                              ai * wi[2] + aj * wj[2]};
         double wxn[3];
         cross(ws, n, wxn);
         /* contact-point relative velocity; dem_tangential_force drops its normal part */
@@ -177,8 +182,8 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
         F[2] += ft[2];
         cross(n, ft, nxf);
         for (int k = 0; k < 3; k++) {
-          tqi[k] = -ri * nxf[k];
-          tqj[k] = -rj * nxf[k];
+          tqi[k] = -ai * nxf[k];
+          tqj[k] = -aj * nxf[k];
         }
       }
       if (in->roll.mu_r > 0.0 && out.contact) {

@@ -11,8 +11,9 @@
  *             rim point, normal (x - q)/|x - q|.
  * A wall is rigid and infinitely heavy: m* = m_i; its material enters through the law's
  * coefficients of the interaction (particle material, wall material).
- * Force on the particle: F = f_n n + F_t; torque on the particle: -r_i n x F_t + M_roll.
- * The wall receives -F at the contact point x_c = x_i - r_i n; its torque is taken about p.
+ * Force on the particle: F = f_n n + F_t; torque on the particle: -a_i n x F_t + M_roll
+ * with a_i = r_i - alpha, the distance from the centre to the wall surface. The wall
+ * receives -F at the contact point x_c = x_i - a_i n; its torque is taken about p.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -231,7 +232,8 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
       double F[3] = {out.f * n[0], out.f * n[1], out.f * n[2]}, T[3] = {0, 0, 0};
       if (in->tang.kind != DEM_TANGENTIAL_NONE && out.contact) {
         double wxn[3], ft[3], nxf[3];
-        const double ws3[3] = {ri * w[0], ri * w[1], ri * w[2]};
+        const double ai = ri - alpha; /* centre to the contact point on the wall surface */
+        const double ws3[3] = {ai * w[0], ai * w[1], ai * w[2]};
         cross(ws3, n, wxn);
         const double vt[3] = {vr[0] - wxn[0], vr[1] - wxn[1], vr[2] - wxn[2]};
         dem_tangential_force(&in->tang, h + hoff, n, vt, s->dt, g.R,
@@ -239,7 +241,7 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
         cross(n, ft, nxf);
         for (int k = 0; k < 3; k++) {
           F[k] += ft[k];
-          T[k] = -ri * nxf[k];
+          T[k] = -ai * nxf[k];
         }
       }
       if (in->roll.mu_r > 0.0 && out.contact) {
@@ -258,8 +260,9 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
         wf[k] -= F[k];
       }
       /* torque on the wall about its point p: (x_c - p) x (-F) */
-      const double arm[3] = {x[0] - ri * n[0] - ws->p[0], x[1] - ri * n[1] - ws->p[1],
-                             x[2] - ri * n[2] - ws->p[2]};
+      const double arm[3] = {x[0] - (ri - alpha) * n[0] - ws->p[0],
+                             x[1] - (ri - alpha) * n[1] - ws->p[1],
+                             x[2] - (ri - alpha) * n[2] - ws->p[2]};
       const double mF[3] = {-F[0], -F[1], -F[2]};
       double c[3];
       cross(arm, mF, c);
