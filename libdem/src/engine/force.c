@@ -148,7 +148,8 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       const double *vi = v + 3 * i, *vj = v + 3 * j, *wi = w + 3 * i, *wj = w + 3 * j;
       const double vr[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
       const double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
-      if (h[0] == 0.0 && in->normal.law->init) dem_contact_init(&in->normal, &g, h, NULL);
+      const unsigned fl = in->fl;
+      if ((fl & DEM_IF_INIT) && h[0] == 0.0) dem_contact_init(&in->normal, &g, h, NULL);
       dem_normal out;
       in->normal.law->force(in->normal.c, &g, h, alpha, -vn, &out);
       touch[q] = (uint8_t)out.contact;
@@ -164,7 +165,7 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       }
       double F[3] = {out.f * n[0], out.f * n[1], out.f * n[2]};
       double tqi[3] = {0.0, 0.0, 0.0}, tqj[3] = {0.0, 0.0, 0.0};
-      if (in->tang.kind != DEM_TANGENTIAL_NONE && out.contact) {
+      if ((fl & DEM_IF_TANG) && out.contact) {
         /* branch vectors to the middle of the overlap: both bodies share the contact
          * point, so the torques conserve angular momentum exactly */
         const double ai = ri - 0.5 * alpha, aj = rj - 0.5 * alpha;
@@ -186,7 +187,7 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
           tqj[k] = -aj * nxf[k];
         }
       }
-      if (in->roll.mu_r > 0.0 && out.contact) {
+      if ((fl & DEM_IF_ROLL) && out.contact) {
         const double wrel[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
         double mr[3];
         /* regularisation: the relative-rotation inertia (dem/tangential.h) */

@@ -15,7 +15,9 @@ typedef struct dem_inter {
   dem_contact normal;       /* law + compiled coefficients */
   dem_tangential tang;      /* kind NONE: no tangential force */
   dem_rolling roll;         /* mu_r = 0: no rolling torque */
+  unsigned fl;              /* DEM_IF_* below, read once per contact by the force loop */
 } dem_inter;
+enum { DEM_IF_INIT = 1u, DEM_IF_TANG = 2u, DEM_IF_ROLL = 4u };
 
 typedef struct dem_wall {
   dem_wall_spec spec;       /* current geometry (p advances with v) */

@@ -220,7 +220,7 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
       const double vr[3] = {v[0] - ws->v[0], v[1] - ws->v[1], v[2] - ws->v[2]};
       const double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
       dem_geom g = {ri * rfac, p->mass[i]};
-      if (h[0] == 0.0 && in->normal.law->init) dem_contact_init(&in->normal, &g, h, NULL);
+      if ((in->fl & DEM_IF_INIT) && h[0] == 0.0) dem_contact_init(&in->normal, &g, h, NULL);
       dem_normal out;
       in->normal.law->force(in->normal.c, &g, h, alpha, -vn, &out);
       if (!out.contact) {
@@ -230,7 +230,7 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
       contacts++;
       max_ov = alpha / ri > max_ov ? alpha / ri : max_ov;
       double F[3] = {out.f * n[0], out.f * n[1], out.f * n[2]}, T[3] = {0, 0, 0};
-      if (in->tang.kind != DEM_TANGENTIAL_NONE && out.contact) {
+      if ((in->fl & DEM_IF_TANG) && out.contact) {
         double wxn[3], ft[3], nxf[3];
         const double ai = ri - alpha; /* centre to the contact point on the wall surface */
         const double ws3[3] = {ai * w[0], ai * w[1], ai * w[2]};
@@ -244,7 +244,7 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
           T[k] = -ai * nxf[k];
         }
       }
-      if (in->roll.mu_r > 0.0 && out.contact) {
+      if ((in->fl & DEM_IF_ROLL) && out.contact) {
         double mr[3];
         const double weps =
             dem_rolling_omega_eps(in->roll.mu_r, fabs(out.f), ri, p->inertia[i], s->dt);
