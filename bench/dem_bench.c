@@ -214,6 +214,8 @@ int main(int argc, char **argv) {
     printf("particles %zu  steps %ld  threads %d  box %.3g m\n", n, steps, threads, box);
     printf("loop time %.3f s  rebuilds %ld  sorts %ld  pairs %zu  contacts/particle %.2f\n",
            st.loop_seconds, st.rebuilds, st.sorts, st.pairs, cpp);
+    printf("contacts %zu  wall contacts %zu  spilled reactions %zu\n", st.contacts,
+           st.wall_contacts, st.spills);
     printf("tangential friction: %s\n", have_tangential ? "on (Mindlin, mu = 0.3)" : "OFF");
     printf("peak RSS %ld kB  engine memory %.1f MB\n", ru.ru_maxrss, st.bytes / 1048576.0);
     printf("cpu time %.3f s (all threads; %.4g particle-steps per cpu-second)\n", cpu,

@@ -83,6 +83,7 @@ typedef struct dem_sim_stats {
   size_t pairs;           /* pairs in the neighbour list */
   size_t contacts;        /* particle-particle contacts at the last force evaluation */
   size_t wall_contacts;   /* particle-wall contacts at the last force evaluation */
+  size_t spills;          /* contacts whose reaction crossed a thread's range (last step) */
   double max_overlap_frac;/* largest alpha / min(r_i, r_j) of the last force evaluation */
   double kinetic_energy;  /* J, translational + rotational, at the end of the last run */
   double loop_seconds;    /* wall-clock seconds spent inside dem_sim_run */

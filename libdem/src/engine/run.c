@@ -149,9 +149,10 @@ static void compute_forces(dem_sim *s, int kick) {
     reduce_spills(s, t);
     if (kick) half_kick(s, td->row_begin, td->row_end);
   }
-  size_t c = 0, wc = 0;
+  size_t c = 0, wc = 0, sp = 0;
   double mo = 0.0;
   for (int t = 0; t < nt; t++) {
+    sp += s->td[t].nspill;
     c += s->td[t].contacts;
     wc += s->td[t].wall_contacts;
     mo = s->td[t].max_overlap > mo ? s->td[t].max_overlap : mo;
@@ -172,6 +173,7 @@ static void compute_forces(dem_sim *s, int kick) {
   }
   s->st.contacts = c;
   s->st.wall_contacts = wc;
+  s->st.spills = sp;
   s->st.max_overlap_frac = mo;
 }
 
