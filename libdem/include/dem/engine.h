@@ -68,10 +68,13 @@ typedef struct dem_breakdown {
   int check_interval;      /* steps between NaN / energy checks; default 100 */
   double ke_growth;        /* an interval's kinetic-energy gain not explained by the work
                               of gravity and walls, relative to the kinetic energy before
-                              it, that counts as a strike; default 0.5 */
+                              it, that counts as a strike; default 1 (more than doubling) */
   int ke_strikes;          /* consecutive strikes that stop the run (DEM_EUNSTABLE);
-                              default 5 */
-  double ke_floor;         /* J, kinetic energies below this never strike; default 1e-12 */
+                              default 10: an unstable step grows geometrically (x1000 in
+                              10 intervals), while energy released by initial overlaps or
+                              a free fall grows like a power of time, whose ratio between
+                              intervals falls below 2 after a few of them */
+  double ke_floor;         /* J, kinetic energies below this never strike; default 0 */
 } dem_breakdown;
 
 /* Counters and diagnostics. */

@@ -15,8 +15,10 @@
  * interval, beyond the work done by gravity and the walls, larger than bd.ke_growth times
  * the kinetic energy at the start of the interval counts as a strike, and bd.ke_strikes
  * consecutive strikes -> DEM_EUNSTABLE. (Elastic energy released by overlaps present at the
- * start is such a gain too, but it does not repeat interval after interval; an unstable
- * time step makes the energy grow geometrically.)
+ * start is such a gain too, but it grows like a power of time, whose ratio between
+ * consecutive intervals soon falls below 1 + ke_growth; an unstable time step makes the
+ * energy grow geometrically, the same ratio interval after interval. The dense benchmark bed,
+ * starting at rest, strikes 5 times in a row with ke_growth = 0.5: hence 1 and 10.)
  */
 #include <math.h>
 #include <string.h>

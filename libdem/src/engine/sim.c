@@ -8,9 +8,9 @@
 void dem_breakdown_defaults(dem_breakdown *b) {
   b->max_overlap_frac = 0.25;
   b->check_interval = 100;
-  b->ke_growth = 0.5;
-  b->ke_strikes = 5;
-  b->ke_floor = 1e-12;
+  b->ke_growth = 1.0;
+  b->ke_strikes = 10;
+  b->ke_floor = 0.0;
 }
 
 dem_sim *dem_sim_create(dem_err *err) {
