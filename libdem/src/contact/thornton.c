@@ -66,7 +66,8 @@ static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
   c[C_ETA] = dem_damping_eta_hertz(e, 0);
   if (c[C_ETA] < 0.0)
     return dem_err_set(err, DEM_EPHYSICS,
-                       "%slaw 'thornton': no damping constant reproduces e = %g (allowed [0.01, 1])",
+                       "%slaw 'thornton': no damping constant reproduces e = %g "
+                       "(allowed [0.01, 1])",
                        dem_params_origin(ps, "e"), e);
   return DEM_OK;
 }
