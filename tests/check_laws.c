@@ -296,6 +296,15 @@ START_TEST(test_jkr_root) {
   ck_assert_msg(worst_back < 8.0, "backward error %g eps", worst_back);
   ck_assert_msg(worst_fwd < 16.0, "forward error %g ulp", worst_fwd);
   ck_assert(n > 2000);
+  /* The cube root used by the closed form, against cbrtl over its whole argument range. */
+  double worst_cbrt = 0.0;
+  for (double lx = log(1.0 / 9.0); lx < log(1e40); lx += 1e-3) {
+    double x = exp(lx);
+    long double r = cbrtl((long double)x);
+    double err = (double)(fabsl((long double)dem_jkr_cbrt(x) - r) / r) / DBL_EPSILON;
+    if (err > worst_cbrt) worst_cbrt = err;
+  }
+  ck_assert_msg(worst_cbrt < 1.0, "cube root error %g ulp", worst_cbrt);
   /* Landmarks of jkr_core.h exactly. */
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(0.0)), -8.0 / 9.0, 4e-16);
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(-1.0 / 3.0)), -1.0, 1e-8);

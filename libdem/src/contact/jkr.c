@@ -66,23 +66,24 @@ void dem_jkr_force(const double *c, const dem_geom *g, double *hist, double alph
       return;
     }
     /* Jump-in at alpha = 0 (thesis 3.4.3.1): cache the scales of this contact. */
+    double dc;
     hist[DEM_HIST_STATE] = 1.0;
-    dem_jkr_scales(c[DEM_JKR_C_GAMMA], c[DEM_JKR_C_ES], g->R, &hist[DEM_JKR_H_FC],
-                   &hist[DEM_JKR_H_DC]);
+    dem_jkr_scales(c[DEM_JKR_C_GAMMA], c[DEM_JKR_C_ES], g->R, &hist[DEM_JKR_H_FC], &dc);
+    hist[DEM_JKR_H_IDC] = 1.0 / dc;
   }
-  double fc = hist[DEM_JKR_H_FC], dc = hist[DEM_JKR_H_DC];
-  double A = alpha / dc;
+  double fc = hist[DEM_JKR_H_FC], idc = hist[DEM_JKR_H_IDC];
+  double A = alpha * idc;
   if (break_at_zero ? !(alpha >= 0.0) : !(A >= DEM_JKR_AF)) {
     hist[DEM_HIST_STATE] = 0.0;
     dem_normal_zero(out);
     return;
   }
   double s = dem_jkr_root(A);
-  double k = (fc / dc) * dem_jkr_khat(s);
+  double k = fc * idc * dem_jkr_khat(s);
   if (!(k > 0.0)) k = 0.0;
   out->k = k;
   out->f_el = fc * dem_jkr_fhat(s);
-  out->f_damp = c[DEM_JKR_C_ETA] * sqrt(g->m * k) * alpha_dot;
+  out->f_damp = c[DEM_JKR_C_ETA] > 0.0 ? c[DEM_JKR_C_ETA] * sqrt(g->m * k) * alpha_dot : 0.0;
   out->f = out->f_el + out->f_damp;
   out->f_adh = 2.0 * fc;
   out->contact = 1;

@@ -39,8 +39,8 @@
  * (A_f^3 = -1/3) — the branch we need — given by Cardano, m = u + v with
  * u = cbrt(1/9 + sqrt(1/81 + A^3/27)), u v = -A/3, u^3 + v^3 = 2/9. Written as
  * m = (2/9) / (u^2 - u v + v^2), it has no cancellation for any A (u^2 - uv + v^2 >=
- * (u^2+v^2)/2 > 0, u >= cbrt(1/9)). Cost: one cbrt, three sqrt, one division; no history,
- * no iteration. For A > 1e12 the root is taken from s = A^(1/4) plus one Newton step
+ * (u^2+v^2)/2 > 0, u >= cbrt(1/9)). Cost: one cube root, three sqrt, two divisions; no
+ * history, no iteration over the quartic. For A > 1e12 the root is taken from s = A^(1/4) plus one Newton step
  * (converged to round-off there; it also avoids A^3 overflowing). Accuracy: the result
  * satisfies the quartic to a few ulps (backward stable); near A_f the root is a double root,
  * so the forward error grows like eps / sqrt(A - A_f), as for any method (tests/check_laws.c
@@ -50,14 +50,35 @@
 #define DEM_JKR_CORE_H
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 /* A_f = alpha_f / delta_c = -3^(-1/3): the breaking overlap. */
 #define DEM_JKR_AF (-0.69336127435063470484335227478596)
 /* s at the break, 3^(-1/3). */
 #define DEM_JKR_SF (0.69336127435063470484335227478596)
 
+/* Cube root of x for 1/9 <= x < 1e40 (the argument u^3 below): a first guess from the
+ * exponent bits (relative error < 4%), two Halley steps (cubic convergence: ~1e-5, then
+ * ~1e-15) and a final Newton step (round-off). Three divisions, no libm call: about three
+ * times faster than cbrt() here, and the result is within an ulp or two of it. */
+static inline double dem_jkr_cbrt(double x) {
+  uint64_t i;
+  memcpy(&i, &x, sizeof i);
+  i = i / 3 + UINT64_C(0x2a9f7893782da1ce);
+  double y;
+  memcpy(&y, &i, sizeof y);
+  for (int k = 0; k < 2; k++) {
+    double y3 = y * y * y;
+    y *= (y3 + 2.0 * x) / (2.0 * y3 + x);
+  }
+  return y - (y * y * y - x) / (3.0 * y * y);
+}
+
 /* Largest real root s of s^4 - (4/3) s - A = 0, for A >= A_f (below A_f: the double root
- * at A_f is returned). */
+ * at A_f is returned). With c = u^3 = 1/9 + sqrt(1/81 + A^3/27), v = -A/(3u) = -A u^2/(3c)
+ * (the division by c runs in parallel with the cube root), Q = u^2 - uv + v^2, m = (2/9)/Q:
+ * sqrt(2m) = (2/3) sqrt(Q)/Q and 8/(3 sqrt(2m)) - 2m = 4 sqrt(Q) - (4/9)/Q. */
 static inline double dem_jkr_root(double A) {
   if (A > 1e12) {
     if (A > 1e200) A = 1e200; /* guard: keeps s^6 finite for any finite input */
@@ -66,12 +87,14 @@ static inline double dem_jkr_root(double A) {
   }
   if (!(A > DEM_JKR_AF)) return DEM_JKR_SF;
   double D = 1.0 / 81.0 + A * A * A / 27.0;
-  double u = cbrt(1.0 / 9.0 + sqrt(D > 0.0 ? D : 0.0));
-  double v = -A / (3.0 * u);
-  double m = (2.0 / 9.0) / (u * u - u * v + v * v);
-  double r = sqrt(2.0 * m);
-  double w = 8.0 / (3.0 * r) - 2.0 * m;
-  return 0.5 * (r + sqrt(w > 0.0 ? w : 0.0));
+  double c = 1.0 / 9.0 + sqrt(D > 0.0 ? D : 0.0);
+  double t = A / (3.0 * c);
+  double u = dem_jkr_cbrt(c);
+  double v = -t * u * u;
+  double Q = u * u - u * v + v * v;
+  double iq = 1.0 / Q, sq = sqrt(Q);
+  double w = 4.0 * sq - (4.0 / 9.0) * iq;
+  return 0.5 * ((2.0 / 3.0) * sq * iq + sqrt(w > 0.0 ? w : 0.0));
 }
 
 /* Dimensionless force F/f_c and stiffness (dF/dalpha) delta_c/f_c at root s. */
@@ -98,8 +121,8 @@ static inline void dem_jkr_scales(double gamma, double Es, double R, double *fc,
 
 /* Compiled coefficients. */
 enum { DEM_JKR_C_ES, DEM_JKR_C_GAMMA, DEM_JKR_C_ETA, DEM_JKR_C_E, DEM_JKR_NCOEF };
-/* History: state (0 apart, 1 in contact), f_c (N) and delta_c (m) cached at formation. */
-enum { DEM_JKR_H_FC = 1, DEM_JKR_H_DC = 2, DEM_JKR_NHIST = 3 };
+/* History: state (0 apart, 1 in contact), f_c (N) and 1/delta_c (1/m) cached at formation. */
+enum { DEM_JKR_H_FC = 1, DEM_JKR_H_IDC = 2, DEM_JKR_NHIST = 3 };
 
 /* The coefficient table, shared (a definition of another length fails to compile). */
 #define DEM_JKR_NCOEFS 6
