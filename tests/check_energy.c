@@ -64,8 +64,8 @@ static void compare(const dem_impact_scene *sc, double v) {
 
 static const char *const PSS[] = {"ke=1500", "kp=210", "kcp=20", "f0=2.1e-6", "f0p=4.0e-6",
                                   NULL};
-static const char *const PSS_LD[] = {"ke_max=13000", "kp=210", "kcp=20", "f0=2.1e-6",
-                                     "f0p=4.0e-6", NULL};
+static const char *const PSS_LD[] = {"ke_max=13000", "ke_load=1",  "kp=210",
+                                     "kcp=20",       "f0=2.1e-6", "f0p=4.0e-6", NULL};
 static const char *const LUD[] = {"ke_max=1500", "kp=210", "kc=20", "f0=2.1e-6", "phi_f=0.02",
                                   NULL};
 static const char *const PAS[] = {"ke=1500", "kp=210", "gamma=0.2", NULL};

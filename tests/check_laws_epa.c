@@ -212,7 +212,10 @@ static void pasha_setup(dem_contact *ct, double ke_max) {
   dem_params_set(&ps, "ke", 1000.0, "t", &e);
   dem_params_set(&ps, "kp", 250.0, "t", &e);
   dem_params_set(&ps, "gamma", 60.0 / M_PI, "t", &e);
-  if (ke_max > 0) dem_params_set(&ps, "ke_max", ke_max, "t", &e);
+  if (ke_max > 0) {
+    dem_params_set(&ps, "ke_max", ke_max, "t", &e);
+    dem_params_set(&ps, "ke_load", 1.0, "t", &e);
+  }
   ck_assert_int_eq(dem_contact_setup(ct, &dem_law_pasha, &ps, &e), DEM_OK);
 }
 
@@ -372,8 +375,18 @@ END_TEST
 START_TEST(test_pasha_errors) {
   static const char *const ke_low[] = {"ke=100", "kp=250", "gamma=0.2", NULL};
   expect_setup_error(&dem_law_pasha, ke_low, DEM_EPHYSICS, "ke = 100", "kp = 250");
-  static const char *const kem_low[] = {"ke=1000", "kp=250", "gamma=0.2", "ke_max=200", NULL};
+  static const char *const kem_low[] = {"ke=1000", "kp=250", "gamma=0.2", "ke_max=200",
+                                        "ke_load=1", NULL};
   expect_setup_error(&dem_law_pasha, kem_low, DEM_EPHYSICS, "ke_max = 200", "kp = 250");
+  static const char *const ld_none[] = {"ke=1000", "kp=250", "gamma=0.2", "ke_load=1", NULL};
+  expect_setup_error(&dem_law_pasha, ld_none, DEM_EMISSING, "ke_max", "ke_load = 1");
+  static const char *const ld_half[] = {"ke=1000", "kp=250", "gamma=0.2", "ke_load=0.5", NULL};
+  expect_setup_error(&dem_law_pasha, ld_half, DEM_ERANGE, "ke_load = 0.5", NULL);
+  /* ke_max without ke_load = 1 belongs to the unused option: accepted, constant k_e. */
+  static const char *const kem_only[] = {"ke=1000", "kp=250", "gamma=0.2", "ke_max=200", NULL};
+  dem_contact ct;
+  setup(&ct, &dem_law_pasha, kem_only);
+  ck_assert_double_eq(ct.c[DEM_PAS_KEMAX], 0.0);
   static const char *const nogam[] = {"ke=1000", "kp=250", NULL};
   expect_setup_error(&dem_law_pasha, nogam, DEM_EMISSING, "gamma", NULL);
 }
@@ -468,8 +481,8 @@ START_TEST(test_simplified_small_and_gamma) {
 END_TEST
 
 START_TEST(test_simplified_load_dependent_damping) {
-  static const char *const kv[] = {"ke_max=4000", "kp=250", "kcp=100", "f0=0.2", "f0p=0.5",
-                                   "e=0.5", NULL};
+  static const char *const kv[] = {"ke_max=4000", "ke_load=1", "kp=250", "kcp=100",
+                                   "f0=0.2",       "f0p=0.5",   "e=0.5",  NULL};
   dem_contact ct;
   path p;
   dem_normal n;
@@ -491,14 +504,23 @@ START_TEST(test_simplified_load_dependent_damping) {
 END_TEST
 
 START_TEST(test_simplified_errors) {
+  /* ke and ke_max both given: ke_load selects (0: constant ke, the default); accepted. */
   static const char *const both[] = {"ke=1000", "ke_max=4000", "kp=250", "kcp=100", "f0=0.2",
                                      NULL};
-  expect_setup_error(&dem_law_pasha_simplified, both, DEM_EINVAL, "ke_max", "either");
+  dem_contact ct;
+  setup(&ct, &dem_law_pasha_simplified, both);
+  ck_assert_double_eq(ct.c[DEM_PSS_KEMAX], 0.0);
   static const char *const none[] = {"kp=250", "kcp=100", "f0=0.2", NULL};
-  expect_setup_error(&dem_law_pasha_simplified, none, DEM_EMISSING, "ke", NULL);
+  expect_setup_error(&dem_law_pasha_simplified, none, DEM_EMISSING, "'ke'", NULL);
+  static const char *const ld_none[] = {"ke_load=1", "kp=250", "kcp=100", "f0=0.2", NULL};
+  expect_setup_error(&dem_law_pasha_simplified, ld_none, DEM_EMISSING, "ke_max", "ke_load = 1");
+  static const char *const ld_half[] = {"ke=1000", "ke_load=0.5", "kp=250", "kcp=100", "f0=0.2",
+                                        NULL};
+  expect_setup_error(&dem_law_pasha_simplified, ld_half, DEM_ERANGE, "ke_load = 0.5", NULL);
   static const char *const ke_low[] = {"ke=100", "kp=250", "kcp=100", "f0=0.2", NULL};
   expect_setup_error(&dem_law_pasha_simplified, ke_low, DEM_EPHYSICS, "ke = 100", "kp = 250");
-  static const char *const kem_low[] = {"ke_max=100", "kp=250", "kcp=100", "f0=0.2", NULL};
+  static const char *const kem_low[] = {"ke_max=100", "ke_load=1", "kp=250", "kcp=100",
+                                        "f0=0.2", NULL};
   expect_setup_error(&dem_law_pasha_simplified, kem_low, DEM_EPHYSICS, "ke_max = 100",
                      "kp = 250");
   static const char *const nof0[] = {"ke=1000", "kp=250", "kcp=100", NULL};
@@ -587,8 +609,8 @@ END_TEST
 
 START_TEST(test_energy_simplified_load_dependent) {
   /* ke_max = 13000 N/m (thesis 4.1.5, Fig 4.26): e rises, peaks, then falls with v. */
-  static const char *const kv[] = {"ke_max=13000", "kp=210", "kcp=20", "f0=2.1e-6",
-                                   "f0p=4.0e-6", NULL};
+  static const char *const kv[] = {"ke_max=13000", "ke_load=1", "kp=210",
+                                   "kcp=20",       "f0=2.1e-6", "f0p=4.0e-6", NULL};
   dem_contact ct;
   dem_energy_point pt;
   dem_err e = {0};
@@ -727,8 +749,8 @@ START_TEST(test_energy_vs_law) {
   dem_geom g = t42_geom();
   dem_contact cts[4];
   static const char *const pas[] = {"ke=1500", "kp=210", "gamma=0.2", NULL};
-  static const char *const ld[] = {"ke_max=13000", "kp=210", "kcp=20", "f0=2.1e-6",
-                                   "f0p=4.0e-6", NULL};
+  static const char *const ld[] = {"ke_max=13000", "ke_load=1", "kp=210",
+                                   "kcp=20",       "f0=2.1e-6", "f0p=4.0e-6", NULL};
   setup(&cts[0], &dem_law_pasha_simplified, T42_PSS);
   setup(&cts[1], &dem_law_luding, T42_LUD);
   setup(&cts[2], &dem_law_pasha, pas);

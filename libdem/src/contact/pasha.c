@@ -26,8 +26,9 @@
  *     floor makes the law continuous with its elastic part at alpha_max -> alpha_0.
  *   - alpha_pd is clamped to R* (A_p = pi R*^2 at most: the cap formula 4.7 falls beyond R*
  *     and its discriminant turns negative beyond 2 R*).
- *   - option ke_max > 0: the unloading stiffness after yield is the load-dependent k_e of
- *     eq (4.23) (uncapped, as the thesis states); the initial linear-JKR part keeps k_e.
+ *   - option ke_load = 1: the unloading stiffness after yield is the load-dependent k_e of
+ *     eq (4.23) with maximum ke_max (uncapped, as the thesis states); the initial
+ *     linear-JKR part keeps k_e.
  * Damping (4.24)-(4.25): k = k_e on the elastic parts, k_p on plastic loading, the unloading
  * k_e on 4.4 and 4.5 (slope magnitude). Sliding limit (4.27): f_adh = f_cp - f_ce after
  * yield, 0 before.
@@ -45,31 +46,42 @@ static const dem_coef_spec coefs[] = {
     {"kp", "N/m", "plastic stiffness k_p", DBL_MIN, 1e12, NAN},
     {"gamma", "J/m^2", "interface energy Gamma (f_ce = 1.5 pi Gamma R*, eq 4.1)", 0.0, 1e3,
      NAN},
-    {"ke_max", "N/m",
-     "0: constant k_e; > 0: load-dependent unloading k_e of eq (4.23) with this maximum", 0.0,
-     1e12, 0.0},
+    {"ke_max", "N/m", "maximum of the load-dependent unloading k_e (eq 4.23; with ke_load = 1)",
+     0.0, 1e12, 0.0},
+    {"ke_load", "-", "0: constant k_e; 1: load-dependent unloading k_e of eq (4.23)", 0.0, 1.0,
+     0.0},
     {"e", "-", "coefficient of restitution of the viscous damping", 1e-3, 1.0, 1.0},
 };
 
 static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
   double ke = dem_params_get_or(ps, "ke", NAN), kp = dem_params_get_or(ps, "kp", NAN);
   double kemax = dem_params_get_or(ps, "ke_max", 0.0), gam = dem_params_get_or(ps, "gamma", 0);
+  double load = dem_params_get_or(ps, "ke_load", 0.0);
   if (ke < kp)
     return dem_err_set(err, DEM_EPHYSICS,
                        "%slaw 'pasha': ke = %g N/m is less than kp = %g N/m: the plastic "
                        "deformation alpha_p - alpha_0 (eq 4.6) would be negative and the "
                        "discriminant alpha_p^2 - C of the pull-off equation (4.10) negative",
                        dem_params_origin(ps, "ke"), ke, kp);
-  if (kemax > 0.0 && kemax < kp)
+  if (load != 0.0 && load != 1.0)
+    return dem_err_set(err, DEM_ERANGE,
+                       "%slaw 'pasha': ke_load = %g must be 0 (constant k_e) or 1 (load-dependent "
+                       "k_e of eq 4.23)",
+                       dem_params_origin(ps, "ke_load"), load);
+  if (load == 1.0 && !(kemax > 0.0))
+    return dem_err_set(err, DEM_EMISSING,
+                       "law 'pasha': ke_load = 1 needs 'ke_max' (N/m, >= kp), the maximum of the "
+                       "load-dependent k_e of eq 4.23");
+  if (load == 1.0 && kemax < kp)
     return dem_err_set(err, DEM_EPHYSICS,
                        "%slaw 'pasha': ke_max = %g N/m is less than kp = %g N/m (eq 4.23 "
-                       "needs ke_max >= kp; use ke_max = 0 for a constant k_e)",
+                       "needs ke_max >= kp)",
                        dem_params_origin(ps, "ke_max"), kemax, kp);
   c[DEM_PAS_KE] = ke;
   c[DEM_PAS_KP] = kp;
   c[DEM_PAS_FCE_R] = 1.5 * M_PI * gam;
   c[DEM_PAS_PIG] = M_PI * gam;
-  c[DEM_PAS_KEMAX] = kemax;
+  c[DEM_PAS_KEMAX] = load == 1.0 ? kemax : 0.0;
   c[DEM_PAS_ETA] = dem_damping_eta_linear(dem_params_get_or(ps, "e", 1.0));
   return DEM_OK;
 }

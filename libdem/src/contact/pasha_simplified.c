@@ -17,7 +17,8 @@
  * given. Both are computed from R* in `force` (two multiplications); `init` checks
  * f0p >= f0 for the geometry (otherwise the locus lies above the loading line near
  * alpha = 0 and the unloading line could meet it before alpha_max).
- * Option ke_max > 0 (instead of ke): load-dependent unloading stiffness, eq (4.23).
+ * Option ke_load = 1: load-dependent unloading stiffness, eq (4.23) with maximum ke_max
+ * (ke is then not used; with ke_load = 0, ke_max is not used).
  * Damping (4.24)-(4.25): k = k_p on plastic loading, the unloading k_e on B-C and C-D.
  * Sliding limit (4.28): F_tc = mu (F + k_cp alpha + f0p - f_ce) with alpha the current
  * overlap (the thesis' alpha_n) and f_ce = 1.5 pi Gamma R* (or 9/8 f0 if Gamma is not given:
@@ -33,16 +34,18 @@
 #include "epa.h"
 
 static const dem_coef_spec coefs[] = {
-    {"ke", "N/m", "constant elastic unloading stiffness (>= kp); 0: use ke_max", 0.0, 1e12,
-     0.0},
+    {"ke", "N/m", "constant elastic unloading stiffness (>= kp); required unless ke_load = 1",
+     0.0, 1e12, 0.0},
     {"kp", "N/m", "plastic loading stiffness", DBL_MIN, 1e12, NAN},
     {"kcp", "N/m", "slope k_cp of the linear pull-off locus (eq 4.17)", 0.0, 1e12, NAN},
     {"f0", "N", "adhesive force at first contact; default 8/9 * 1.5 pi gamma R*", 0.0, 1e3,
      -1.0},
     {"f0p", "N", "intercept f_0p of the pull-off locus (eq 4.17); default f0", 0.0, 1e3, -1.0},
     {"gamma", "J/m^2", "interface energy (for f0 and f_ce = 1.5 pi gamma R*)", 0.0, 1e3, -1.0},
-    {"ke_max", "N/m", "instead of ke: load-dependent k_e of eq (4.23) with this maximum", 0.0,
-     1e12, 0.0},
+    {"ke_max", "N/m", "maximum of the load-dependent unloading k_e (eq 4.23; with ke_load = 1)",
+     0.0, 1e12, 0.0},
+    {"ke_load", "-", "0: constant ke; 1: load-dependent k_e of eq (4.23) (ke is then unused)",
+     0.0, 1.0, 0.0},
     {"e", "-", "coefficient of restitution of the viscous damping", 1e-3, 1.0, 1.0},
 };
 
@@ -51,22 +54,27 @@ static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
   double kemax = dem_params_get_or(ps, "ke_max", 0.0);
   double f0 = dem_params_get_or(ps, "f0", -1.0), f0p = dem_params_get_or(ps, "f0p", -1.0);
   double gam = dem_params_get_or(ps, "gamma", -1.0);
-  if (ke > 0.0 && kemax > 0.0)
-    return dem_err_set(err, DEM_EINVAL,
-                       "%slaw 'pasha-simplified': give either ke (constant, = %g N/m) or ke_max "
-                       "(load-dependent eq 4.23, = %g N/m), not both",
-                       dem_params_origin(ps, "ke_max"), ke, kemax);
-  if (!(ke > 0.0) && !(kemax > 0.0))
+  double load = dem_params_get_or(ps, "ke_load", 0.0);
+  if (load != 0.0 && load != 1.0)
+    return dem_err_set(err, DEM_ERANGE,
+                       "%slaw 'pasha-simplified': ke_load = %g must be 0 (constant ke) or 1 "
+                       "(load-dependent k_e of eq 4.23)",
+                       dem_params_origin(ps, "ke_load"), load);
+  if (load == 0.0 && !(ke > 0.0))
     return dem_err_set(err, DEM_EMISSING,
                        "law 'pasha-simplified' needs coefficient 'ke' (elastic unloading "
-                       "stiffness, N/m, > 0) or 'ke_max' (eq 4.23)");
-  if (ke > 0.0 && ke < kp)
+                       "stiffness, N/m, >= kp), or ke_load = 1 with 'ke_max' (eq 4.23)");
+  if (load == 0.0 && ke < kp)
     return dem_err_set(err, DEM_EPHYSICS,
                        "%slaw 'pasha-simplified': ke = %g N/m is less than kp = %g N/m: the "
                        "permanent overlap alpha_p = alpha_max - F_max/ke would fall below "
                        "alpha_0 (unloading must be stiffer than plastic loading)",
                        dem_params_origin(ps, "ke"), ke, kp);
-  if (kemax > 0.0 && kemax < kp)
+  if (load == 1.0 && !(kemax > 0.0))
+    return dem_err_set(err, DEM_EMISSING,
+                       "law 'pasha-simplified': ke_load = 1 needs 'ke_max' (N/m, >= kp), the "
+                       "maximum of the load-dependent k_e of eq 4.23");
+  if (load == 1.0 && kemax < kp)
     return dem_err_set(err, DEM_EPHYSICS,
                        "%slaw 'pasha-simplified': ke_max = %g N/m is less than kp = %g N/m "
                        "(eq 4.23 needs ke_max >= kp)",
@@ -81,13 +89,13 @@ static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
                        "pull-off locus (eq 4.17) would lie above the loading line near "
                        "alpha = 0",
                        dem_params_origin(ps, "f0p"), f0p, f0);
-  c[DEM_PSS_KE] = ke;
+  c[DEM_PSS_KE] = load == 1.0 ? 0.0 : ke;
   c[DEM_PSS_KP] = kp;
   c[DEM_PSS_KCP] = dem_params_get_or(ps, "kcp", NAN);
   c[DEM_PSS_F0] = f0;
   c[DEM_PSS_F0P] = f0p;
   c[DEM_PSS_FCE_R] = gam >= 0.0 ? 1.5 * M_PI * gam : -1.0;
-  c[DEM_PSS_KEMAX] = kemax;
+  c[DEM_PSS_KEMAX] = load == 1.0 ? kemax : 0.0;
   c[DEM_PSS_ETA] = dem_damping_eta_linear(dem_params_get_or(ps, "e", 1.0));
   return DEM_OK;
 }
