@@ -669,6 +669,24 @@ START_TEST(test_energy_luding) {
   double einf;
   ck_assert_int_eq(dem_energy_e_limit(&ct, &einf, &e), DEM_OK);
   ck_assert_double_eq_tol(einf, 0.265497, 1e-6); /* sqrt(0.14 - 0.069511) */
+  /* Plasticity depth: the capped sticking root alpha_max = 2.8373e-7 m lies beyond alpha*
+   * while alpha* = 2.3256 phi_f R* < 2.8373e-7, i.e. phi_f < 0.04980. Beyond that, k_e at the
+   * root is below ke_max, the elastic energy larger, and the particle rebounds from about
+   * 1.29 m/s up (thesis 4.1.5: "for phi_f larger than 0.0412 there was always a finite
+   * rebound velocity"; our equations put the threshold at 0.0498, docs/contact-laws.md). */
+  {
+    static const char *const p49[] = {"ke_max=1500", "kp=210", "kc=20", "f0=2.1e-6",
+                                      "phi_f=0.0497", NULL};
+    static const char *const p50[] = {"ke_max=1500", "kp=210", "kc=20", "f0=2.1e-6",
+                                      "phi_f=0.0499", NULL};
+    setup(&ct, &dem_law_luding, p49);
+    ck_assert_int_eq(dem_energy_v_stick(&ct, &g, T42_R, &vs, &e), DEM_OK);
+    ck_assert_double_eq_tol(vs, 13.74634, 1e-5);
+    setup(&ct, &dem_law_luding, p50);
+    ck_assert_int_eq(dem_energy_v_stick(&ct, &g, T42_R, &vs, &e), DEM_OK);
+    ck_assert(vs > 1.2 && vs < 1.35);
+    ck_assert_int_eq(dem_energy_v_stick_closed(&ct, &g, &vc, &e), DEM_EUNSUPPORTED);
+  }
   /* Uncapped k_e: sticks for every alpha_max up to R* (thesis 4.1.5, last paragraph). */
   static const char *const unc[] = {"ke_max=1500", "kp=210", "kc=20", "f0=2.1e-6",
                                     "phi_f=0.02", "ke_capped=0", NULL};
