@@ -730,6 +730,48 @@ START_TEST(test_energy_pasha) {
 }
 END_TEST
 
+/* v_s of the full law, thesis 4.1.3 (Figs 4.11-4.14, set ke = 1500, kp = 210 N/m,
+ * Gamma = 0.02 J/m^2, R* = 2.45 um): "a linear function of the interface energy and elastic
+ * stiffness", non-linear and decreasing in kp and R*. From the closed form,
+ * v_s ~ sqrt(kp/m) x with x ~ 4 pi Gamma R* (ke - kp)/kp^2 while pi Gamma r^2 << kp^2/(2 ke):
+ * linear in Gamma and in ke (to < 1% here), ~ kp^{-3/2} (ke - kp), ~ R*^{-1/2}. */
+static double pasha_vs(double ke, double kp, double gam, double R) {
+  dem_params ps;
+  dem_contact ct;
+  dem_err e = {0};
+  dem_params_init(&ps);
+  dem_params_set(&ps, "ke", ke, "t", &e);
+  dem_params_set(&ps, "kp", kp, "t", &e);
+  dem_params_set(&ps, "gamma", gam, "t", &e);
+  ck_assert_int_eq(dem_contact_setup(&ct, &dem_law_pasha, &ps, &e), DEM_OK);
+  dem_geom g = {R, dem_sphere_mass(R, 1350.0)};
+  double vs;
+  ck_assert_int_eq(dem_energy_v_stick_closed(&ct, &g, &vs, &e), DEM_OK);
+  return vs;
+}
+
+START_TEST(test_energy_pasha_trends) {
+  const double R = T42_R;
+  double g1 = pasha_vs(1500, 210, 0.01, R), g2 = pasha_vs(1500, 210, 0.02, R),
+         g4 = pasha_vs(1500, 210, 0.04, R);
+  ck_assert_double_eq_tol((g4 - g2) / (g2 - g1), 2.0, 0.02); /* linear in Gamma */
+  ck_assert_double_eq_tol(g2 / g1, 2.0, 0.01);               /* through the origin */
+  double k1 = pasha_vs(1000, 210, 0.02, R), k2 = pasha_vs(1500, 210, 0.02, R),
+         k3 = pasha_vs(2000, 210, 0.02, R);
+  ck_assert_double_eq_tol((k3 - k2) / (k2 - k1), 1.0, 0.02); /* linear in ke */
+  ck_assert_double_eq_tol(k2 / k1, (1500.0 - 210) / (1000.0 - 210), 0.01);
+  double p1 = pasha_vs(1500, 105, 0.02, R), p2 = pasha_vs(1500, 420, 0.02, R);
+  ck_assert(p1 > k2 && k2 > p2); /* decreasing in kp, non-linear: */
+  /* 1.1% off the scaling: pi Gamma r^2 = 0.054 against kp^2/(2 ke) = 3.7 at kp = 105 */
+  ck_assert_double_eq_tol(p1 / k2, pow(0.5, -1.5) * (1500.0 - 105) / (1500.0 - 210), 0.05);
+  double r1 = pasha_vs(1500, 210, 0.02, 0.5 * R), r2 = pasha_vs(1500, 210, 0.02, 2 * R);
+  ck_assert(r1 > k2 && k2 > r2);
+  ck_assert_double_eq_tol(r1 / r2, 2.0, 0.01); /* ~ R*^{-1/2}: factor 4 in R* -> 2 */
+  /* Value at the sensitivity set: x = 1.7958e-8 m, v_s = 0.9024 m/s. */
+  ck_assert_double_eq_tol(g2, 0.9024, 1e-3);
+}
+END_TEST
+
 /* The closed forms against the law itself: integrate F d alpha of the law's own force along
  * the path 0 -> alpha_max -> breakage (trapezoid, 2e5 steps). 1/2 m v_i^2 is the loading
  * work; 1/2 m v_r^2 the work returned on unloading. */
@@ -765,15 +807,18 @@ static void law_works(const dem_contact *ct, const dem_geom *g, double amax, dou
 
 START_TEST(test_energy_vs_law) {
   dem_geom g = t42_geom();
-  dem_contact cts[4];
+  dem_contact cts[5];
   static const char *const pas[] = {"ke=1500", "kp=210", "gamma=0.2", NULL};
+  static const char *const pas_ld[] = {"ke=1500",      "kp=210",    "gamma=0.02",
+                                       "ke_max=13000", "ke_load=1", NULL};
   static const char *const ld[] = {"ke_max=13000", "ke_load=1", "kp=210",
                                    "kcp=20",       "f0=2.1e-6", "f0p=4.0e-6", NULL};
   setup(&cts[0], &dem_law_pasha_simplified, T42_PSS);
   setup(&cts[1], &dem_law_luding, T42_LUD);
   setup(&cts[2], &dem_law_pasha, pas);
   setup(&cts[3], &dem_law_pasha_simplified, ld);
-  for (int i = 0; i < 4; i++) {
+  setup(&cts[4], &dem_law_pasha, pas_ld);
+  for (int i = 0; i < 5; i++) {
     for (double v = 5.0; v < 50; v *= 3.0) {
       dem_energy_point pt;
       dem_err e = {0};
@@ -842,6 +887,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_energy_simplified_load_dependent);
   tcase_add_test(tc, test_energy_luding);
   tcase_add_test(tc, test_energy_pasha);
+  tcase_add_test(tc, test_energy_pasha_trends);
   tcase_add_test(tc, test_energy_vs_law);
   tcase_add_test(tc, test_registry);
   suite_add_tcase(s, tc);
