@@ -92,6 +92,35 @@ START_TEST(test_eta_hertz) {
 }
 END_TEST
 
+START_TEST(test_hertz_force) {
+  /* f = 4/3 E* sqrt(R*) alpha^1.5 and k = df/dalpha (central difference); wall_E/wall_nu
+   * default to the particle's values. */
+  dem_params ps;
+  dem_err err = {0};
+  dem_params_init(&ps);
+  dem_params_set(&ps, "E", 1.2e9, "t", &err);
+  dem_params_set(&ps, "nu", 0.3, "t", &err);
+  dem_contact ct;
+  ck_assert_int_eq(dem_contact_setup(&ct, &dem_law_hertz, &ps, &err), DEM_OK);
+  dem_geom g = {2.385e-6, 4.1e-14};
+  double hist[1] = {0}, a = 3.7e-8;
+  dem_normal n, np, nm;
+  dem_contact_force(&ct, &g, hist, a, 0.0, &n);
+  double Es = dem_reduced_modulus(1.2e9, 0.3, 1.2e9, 0.3);
+  ck_assert_double_eq_tol(n.f, 4.0 / 3.0 * Es * sqrt(g.R) * pow(a, 1.5), 1e-12 * n.f);
+  dem_contact_force(&ct, &g, hist, a * (1 + 1e-6), 0.0, &np);
+  dem_contact_force(&ct, &g, hist, a * (1 - 1e-6), 0.0, &nm);
+  ck_assert_double_eq_tol(n.k, (np.f - nm.f) / (2e-6 * a), 1e-6 * n.k);
+  dem_contact_force(&ct, &g, hist, -1e-9, -1.0, &n);
+  ck_assert_int_eq(n.contact, 0);
+  ck_assert_double_eq(n.f, 0.0);
+  /* Damping: e outside (0, 1] is rejected by the generic range check, naming the key. */
+  dem_params_set(&ps, "e", 1.5, "x.cfg:4", &err);
+  ck_assert_int_eq(dem_contact_setup(&ct, &dem_law_hertz, &ps, &err), DEM_ERANGE);
+  ck_assert(strstr(err.msg, "x.cfg:4") && strstr(err.msg, "'e'"));
+}
+END_TEST
+
 static Suite *suite(void) {
   Suite *s = suite_create("core");
   TCase *tc = tcase_create("core");
@@ -102,6 +131,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_time_steps);
   tcase_add_test(tc, test_eta_linear);
   tcase_add_test(tc, test_eta_hertz);
+  tcase_add_test(tc, test_hertz_force);
   suite_add_tcase(s, tc);
   return s;
 }
