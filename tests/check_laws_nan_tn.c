@@ -696,15 +696,16 @@ END_TEST
 START_TEST(test_tn_errors) {
   dem_params ps;
   dem_err e;
-  /* adhesion-induced yield (alpha_y <= 0): p_y far too low for Gamma */
+  /* adhesion-induced yield (alpha_y <= 0): p_y too low for Gamma */
   af_params(&ps);
-  set(&ps, "py", 1e5);
+  set(&ps, "py", 28.2e6);
   ck_assert_int_eq(init_err("thornton-ning", &ps, AF_R, &e), DEM_EPHYSICS);
-  ck_assert(strstr(e.msg, "py = 100000") && strstr(e.msg, "alpha_y"));
+  ck_assert(strstr(e.msg, "py = 2.82e+07") && strstr(e.msg, "alpha_y"));
   /* the threshold in the message is the real one: just above it the set is accepted */
   const char *p = strstr(e.msg, "py > ");
   ck_assert_ptr_nonnull(p);
   double pmin = atof(p + 5);
+  ck_assert(pmin > 30e6 && pmin < 31e6);
   set(&ps, "py", pmin * 1.001);
   ck_assert_int_eq(init_err("thornton-ning", &ps, AF_R, &e), DEM_OK);
   set(&ps, "py", pmin * 0.999);

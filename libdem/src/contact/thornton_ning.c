@@ -89,7 +89,10 @@ static double yield_radius(const double *c, double R) {
   return s * s;
 }
 
-/* The per-contact yield constants; error if the law cannot represent the set. */
+/* The per-contact yield constants; error if the law cannot represent the set: alpha_y <= 0
+ * (adhesion-induced yield, the jump-in radius a_0 already exceeds a_y) would make the first
+ * contact plastic with F_max < -8/9 f_cp, so that the re-contact overlap alpha_c0 lies
+ * beyond alpha_max and the re-contact rule contradicts the loading rule. */
 static int yield_point(const double *c, const dem_geom *g, double *ay, double *aly, double *p0,
                        dem_err *err) {
   double R = g->R;
