@@ -268,3 +268,30 @@ int dem_nan_vys(const dem_nan_coeffs *k, double m, double *vys, double *f_max, d
                      "f_max = %g N)",
                      k->R, k->py, fm);
 }
+
+int dem_nan_impact(const dem_nan_coeffs *k, double m, double v, dem_nan_impact_cf *r,
+                   dem_err *err) {
+  if (!pos(m) || !(v > 0.0) || !isfinite(v))
+    return dem_err_set(err, DEM_ERANGE,
+                       "nan impact: mass m = %g kg and velocity v = %g m/s must be > 0", m, v);
+  double f2 = k->f0 * k->f0 + k->kel * m * v * v, am;
+  dem_nan_unload u;
+  if (f2 <= k->fy * k->fy) { /* no yield: the line BC */
+    r->f_max = sqrt(f2);
+    am = k->alpha0 + r->f_max / k->kel;
+    dem_nan_unloading(k, k->alphay, &u);
+  } else {
+    r->f_max = sqrt(k->fy * k->fy + k->kp * (m * v * v - m * dem_nan_vy2(k, m)));
+    am = k->alphay + (r->f_max - k->fy) / k->kp;
+    dem_nan_unloading(k, am, &u);
+  }
+  r->alpha_max = am;
+  r->alpha_p = u.alpha_p;
+  r->f_cp = u.f_cp;
+  double w = r->f_max * r->f_max / (2.0 * u.ke) -
+             0.5 * u.f_cp * u.f_cp / u.ke * (1.0 + 56.0 / 81.0 * u.ke / u.kc);
+  r->stuck = !(w > 0.0);
+  r->v_rebound = r->stuck ? 0.0 : sqrt(2.0 * w / m);
+  r->e = r->v_rebound / v;
+  return DEM_OK;
+}

@@ -134,4 +134,21 @@ double dem_nan_vy2(const dem_nan_coeffs *k, double m);
  * DEM_EMAXITER if the iteration does not converge. No damping (e0 = 1). */
 int dem_nan_vys(const dem_nan_coeffs *k, double m, double *vys, double *f_max, dem_err *err);
 
+/* Undamped impact on a wall at V (m/s), by the energy balance of Appendix A / Fig 4:
+ * below yield f_max^2 = f_0^2 + k_el m V^2 (W_1 + 1/2 m V^2 = f_max^2 / 2k_el); above,
+ * eq (79) f_max^2 = f_y^2 + k_p (m V^2 - m V_y^2); alpha_max eq (10); the unloading line;
+ * rebound 1/2 m v_r^2 = W_4 - (W_5 + W_6) = f_max^2/(2 k_e) - f_cp^2/(2 k_e) (1 + 56/81 k_e/k_c)
+ * (eq 78), stuck if negative. alpha_p is the zero-force overlap of the unloading line. */
+typedef struct dem_nan_impact_cf {
+  double f_max;     /* N */
+  double alpha_max; /* m */
+  double alpha_p;   /* m */
+  double f_cp;      /* N */
+  double v_rebound; /* m/s, 0 if stuck */
+  double e;         /* v_rebound / V */
+  int stuck;
+} dem_nan_impact_cf;
+int dem_nan_impact(const dem_nan_coeffs *k, double m, double v, dem_nan_impact_cf *r,
+                   dem_err *err);
+
 #endif
