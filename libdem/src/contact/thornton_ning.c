@@ -166,7 +166,11 @@ static void force(const double *c, const dem_geom *g, double *h, double alpha, d
     a = dem_jkr_radius(rp, Es, gam, alpha - h[H_AC0]);
     if (!(a > 0.0)) a = cbrt(M_PI * gam * rp * rp / (8.0 * Es)); /* rounding at a_f */
     f = dem_jkr_force(rp, Es, gam, a);
-    k = dem_jkr_stiffness(rp, Es, gam, a);
+    /* dF/dalpha > 0 only above the pull-off radius a_c; below it the branch softens to
+     * -infinity at breakage, and rounding just below a_f would flip the sign of the
+     * formula's vanishing denominator: the damping stiffness is 0 there. */
+    double ac3 = 9.0 * M_PI * gam * rp * rp / (8.0 * Es);
+    k = a * a * a > ac3 ? dem_jkr_stiffness(rp, Es, gam, a) : 0.0;
   }
   if (!(k > 0.0) || !isfinite(k)) k = 0.0;
   h[H_A] = a;
