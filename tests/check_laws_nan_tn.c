@@ -265,6 +265,48 @@ START_TEST(test_nan_table6_closed_form) {
 }
 END_TEST
 
+/* The closed-form undamped impact (dem_nan_impact): rebound zero exactly at V_ys, JKR-like
+ * restitution e^2 = 1 - V_s^2/V^2 below yield (eq 73 with W_0 = W_JKR), continuity at yield. */
+START_TEST(test_nan_impact_closed_form) {
+  dem_err e = {0};
+  dem_nan_coeffs k;
+  double R = 2.45e-6, m = dem_sphere_mass(R, 1350), vys;
+  t5_coeffs(R, 0.24, 30e6, &k);
+  ck_assert_int_eq(dem_nan_vys(&k, m, &vys, NULL, &e), DEM_OK);
+  dem_nan_impact_cf c;
+  ck_assert_int_eq(dem_nan_impact(&k, m, vys * (1 + 1e-9), &c, &e), DEM_OK);
+  ck_assert(!c.stuck && c.e < 1e-3);
+  ck_assert_int_eq(dem_nan_impact(&k, m, vys * (1 - 1e-9), &c, &e), DEM_OK);
+  ck_assert(c.stuck && c.e == 0.0);
+  ck_assert_int_eq(dem_nan_impact(&k, m, 5.0, &c, &e), DEM_OK);
+  ck_assert(c.e > 0.2 && c.e < 1.0 && c.alpha_p < c.alpha_max && c.f_cp > k.fce);
+  /* high p_y: no yield up to V_y; e^2 = 1 - (V_s/V)^2 */
+  t5_coeffs(R, 0.24, 200e6, &k);
+  double vs = dem_nan_vs(k.R, k.Es, k.gamma, m), v = 2.0 * vs;
+  ck_assert(dem_nan_vy2(&k, m) > v * v);
+  ck_assert_int_eq(dem_nan_impact(&k, m, v, &c, &e), DEM_OK);
+  REL(c.e * c.e, 0.75, 0.02); /* W_0 of eq (35) = W_JKR up to eq 38's rounding */
+  /* with k_el/k_cl from the unrounded eqs (36)-(37), W_0 = W_JKR exactly */
+  dem_nan_input in = {R, k.Es, 0.24, 200e6, NAN, NAN, NAN, 46, 59};
+  in.kel_kcl = dem_nan_kel_kcl_exact(R, k.Es, 0.24, dem_nan_kel_py(R, 200e6));
+  dem_nan_coeffs kx;
+  ck_assert_int_eq(dem_nan_coeffs_init(&kx, &in, &e), DEM_OK);
+  ck_assert_int_eq(dem_nan_impact(&kx, m, v, &c, &e), DEM_OK);
+  REL(c.e * c.e, 0.75, 1e-12);
+  REL(c.alpha_p, k.alpha0, 1e-15);
+  /* continuity at the yield velocity: both branches give f_max = f_y */
+  double vy = sqrt(dem_nan_vy2(&k, m));
+  dem_nan_impact_cf c1, c2;
+  dem_nan_impact(&k, m, vy * (1 - 1e-10), &c1, &e);
+  dem_nan_impact(&k, m, vy * (1 + 1e-10), &c2, &e);
+  REL(c1.f_max, k.fy, 1e-9);
+  REL(c2.f_max, k.fy, 1e-9);
+  REL(c1.e, c2.e, 1e-8);
+  ck_assert_int_eq(dem_nan_impact(&k, 0.0, 1.0, &c, &e), DEM_ERANGE);
+  ck_assert_int_eq(dem_nan_impact(&k, m, -1.0, &c, &e), DEM_ERANGE);
+}
+END_TEST
+
 /* Fig 9: V_ys / V_s falls with p_y and equals 1 from the p_y where V_y = V_s (eq 77); the
  * adhesion-induced yield zone (V_y^2 < 0) lies below the p_y of eq (80). */
 START_TEST(test_nan_fig9_shape) {
@@ -737,6 +779,7 @@ static Suite *suite(void) {
   tcase_add_test(t, test_nan_cy_timestep);
   tcase_add_test(t, test_nan_table6_closed_form);
   tcase_add_test(t, test_nan_fig9_shape);
+  tcase_add_test(t, test_nan_impact_closed_form);
   suite_add_tcase(s, t);
   t = tcase_create("nan_law");
   tcase_add_test(t, test_nan_path);
