@@ -32,6 +32,13 @@
 
 enum { C_ES, C_GAMMA, C_PY, C_ETA, C_K1, C_K2 };
 
+/* History. Every JKR curve of radius rho is used in the dimensionless form of
+ * dem/jkr_radius.h: with A0 = (2 pi Gamma rho^2 / E*)^(1/3) (the jump-in radius) and
+ * alpha_s = A0^2 / rho,
+ *   alpha = alpha_s (x^4 - x),  a = A0 x^2,  F = f_c(rho) (16 x^6 - 24 x^3) / 9,
+ *   dF/dalpha = f_c(rho) (8/3) x^2 (4x^3 - 3) / (alpha_s (4x^3 - 1)),   f_c = 1.5 pi Gamma rho,
+ * (x = 1: jump-in, -8/9 f_c; x^3 = 3/4: pull-off, -f_c; x^3 = 1/4: breakage, -5/9 f_c), so
+ * that an evaluation costs one quartic solve and no further roots; the scales are cached. */
 enum {
   H_STATE, /* 0 fresh, 1 in contact, 2 separated after breakage */
   H_RP,    /* unloading radius R_p (= R* before yield), m */
@@ -44,6 +51,11 @@ enum {
   H_A,     /* contact radius at the last call, m (diagnostic) */
   H_FCP,   /* f_cp = 1.5 pi Gamma R_p, N */
   H_AF,    /* breakage overlap of the current curve, m */
+  H_A0P,   /* A0 of the R_p curve, m */
+  H_IASP,  /* 1 / alpha_s of the R_p curve, 1/m */
+  H_A0S,   /* A0 of the R* curve, m */
+  H_SA0S,  /* sqrt(A0 of the R* curve), m^1/2 */
+  H_IASS,  /* 1 / alpha_s of the R* curve, 1/m */
   H_N
 };
 enum { ST_FRESH = 0, ST_CONTACT = 1, ST_APART = 2 };
@@ -114,21 +126,32 @@ static int yield_point(const double *c, const dem_geom *g, double *ay, double *a
   return DEM_OK;
 }
 
+/* Set the R_p curve's cached scales and breakage overlap (alpha_c0 already set). */
+static void set_curve(const double *c, double *h, double rp) {
+  double a0 = cbrt(2.0 * M_PI * c[C_GAMMA] * rp * rp / c[C_ES]), as = a0 * a0 / rp;
+  h[H_RP] = rp;
+  h[H_A0P] = a0;
+  h[H_IASP] = 1.0 / as;
+  h[H_FCP] = 1.5 * M_PI * c[C_GAMMA] * rp; /* (3.59) */
+  h[H_AF] = h[H_AC0] + DEM_JKR_QMIN * as;  /* breakage, -5/9 f_cp */
+}
+
 static int init(const double *c, const dem_geom *g, double *h, dem_err *err) {
   double ay, aly, p0;
   int rc = yield_point(c, g, &ay, &aly, &p0, err);
   if (rc) return rc;
   h[H_STATE] = ST_FRESH;
-  h[H_RP] = g->R;
   h[H_AC0] = 0.0;
+  set_curve(c, h, g->R);
+  h[H_A0S] = h[H_A0P];
+  h[H_SA0S] = sqrt(h[H_A0P]);
+  h[H_IASS] = h[H_IASP];
   h[H_AMAX] = aly;
   h[H_FMAX] = dem_jkr_force(g->R, c[C_ES], c[C_GAMMA], ay);
   h[H_AY] = ay;
   h[H_ALY] = aly;
   h[H_P0] = p0;
   h[H_A] = 0.0;
-  h[H_FCP] = 1.5 * M_PI * c[C_GAMMA] * g->R;
-  h[H_AF] = dem_jkr_alpha_f(g->R, c[C_ES], c[C_GAMMA]);
   return DEM_OK;
 }
 
@@ -141,36 +164,39 @@ static void force(const double *c, const dem_geom *g, double *h, double alpha, d
     }
     h[H_STATE] = ST_CONTACT;
   }
-  const double R = g->R, Es = c[C_ES], gam = c[C_GAMMA];
   double a, f, k;
-  if (alpha > h[H_AMAX]) { /* plastic loading, thesis (3.56) and the force above */
-    a = dem_jkr_radius(R, Es, gam, alpha);
-    double sa = sqrt(a);
-    f = h[H_P0] + M_PI * c[C_PY] * a * a - h[H_AY] * c[C_K2] * sa;
-    k = (2.0 * M_PI * c[C_PY] * a - 0.5 * h[H_AY] * c[C_K2] / sa) /
-        (2.0 * a / R - 0.5 * c[C_K1] / sa);
-    double rp = 4.0 * Es * a * a * a / (3.0 * (f + c[C_K2] * a * sa)); /* (3.58) */
-    h[H_RP] = rp;
+  if (alpha > h[H_AMAX]) { /* plastic loading on the R* geometry, thesis (3.56) */
+    const double R = g->R, fc = 1.5 * M_PI * c[C_GAMMA] * R;
+    double x = dem_jkr_quartic_root(alpha * h[H_IASS]), x3 = x * x * x;
+    a = h[H_A0S] * x * x;
+    double ky = h[H_AY] * c[C_K2] * h[H_SA0S]; /* a_y sqrt(8 pi Gamma E*) sqrt(A0) */
+    f = h[H_P0] + M_PI * c[C_PY] * a * a - ky * x;
+    k = (4.0 * M_PI * c[C_PY] * a * a / x - ky) * h[H_IASS] / (4.0 * x3 - 1.0);
+    /* (3.58): R_p = R* F*_max / (F_max + sqrt(4 f_c F*_max)), F*_max = 16/9 f_c x^6 and
+     * sqrt(4 f_c F*_max) = 24/9 f_c x^3 */
+    double fh = 16.0 / 9.0 * fc * x3 * x3;
+    double rp = R * fh / (f + 24.0 / 9.0 * fc * x3);
     h[H_AC0] = a * a * (1.0 / R - 1.0 / rp);
     h[H_AMAX] = alpha;
     h[H_FMAX] = f;
-    h[H_FCP] = 1.5 * M_PI * gam * rp; /* (3.59) */
-    h[H_AF] = h[H_AC0] + dem_jkr_alpha_f(rp, Es, gam);
+    set_curve(c, h, rp);
   } else {
     if (!(alpha >= h[H_AF])) { /* breakage at -5/9 f_cp; R_p and alpha_c0 are kept */
       h[H_STATE] = ST_APART;
       dem_normal_zero(out);
       return;
     }
-    double rp = h[H_RP];
-    a = dem_jkr_radius(rp, Es, gam, alpha - h[H_AC0]);
-    if (!(a > 0.0)) a = cbrt(M_PI * gam * rp * rp / (8.0 * Es)); /* rounding at a_f */
-    f = dem_jkr_force(rp, Es, gam, a);
-    /* dF/dalpha > 0 only above the pull-off radius a_c; below it the branch softens to
-     * -infinity at breakage, and rounding just below a_f would flip the sign of the
-     * formula's vanishing denominator: the damping stiffness is 0 there. */
-    double ac3 = 9.0 * M_PI * gam * rp * rp / (8.0 * Es);
-    k = a * a * a > ac3 ? dem_jkr_stiffness(rp, Es, gam, a) : 0.0;
+    double x = dem_jkr_quartic_root((alpha - h[H_AC0]) * h[H_IASP]);
+    if (!(x > 0.0)) x = cbrt(0.25); /* rounding at the breakage point */
+    double x3 = x * x * x;
+    a = h[H_A0P] * x * x;
+    f = h[H_FCP] * (16.0 * x3 * x3 - 24.0 * x3) / 9.0;
+    /* dF/dalpha > 0 only above the pull-off point x^3 = 3/4; below it the branch softens to
+     * -infinity at breakage (x^3 = 1/4), where rounding could flip the sign of the vanishing
+     * denominator: the damping stiffness is 0 there. */
+    k = x3 > 0.75 ? h[H_FCP] * (8.0 / 3.0) * x * x * (4.0 * x3 - 3.0) * h[H_IASP] /
+                        (4.0 * x3 - 1.0)
+                  : 0.0;
   }
   if (!(k > 0.0) || !isfinite(k)) k = 0.0;
   h[H_A] = a;
