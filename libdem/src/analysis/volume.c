@@ -4,11 +4,13 @@
  * Sphere-box volume (docs/analysis.md): V = integral over z of A(z), A the area of the disc
  * of radius rho(z) = sqrt(R^2 - (z - zc)^2) inside the box's x-y rectangle. A is exact
  * (inclusion-exclusion of four quarter-plane areas Q, each a sum of circular-segment
- * integrals). A(z) has kinks where the disc touches an edge of the rectangle
- * (A ~ (rho - d)^(3/2)) or passes a corner; the z range is split there, and each piece
- * [a, b] is integrated by 20-point Gauss-Legendre in u with z = a + (b - a)(1 - cos(pi u))/2,
- * which makes the integrand analytic at the piece's ends (z - a ~ u^2). Relative error
- * ~1e-13 (tests/check_analysis.c compares with closed forms and additivity).
+ * integrals). The integral is taken over theta, z - zc = R sin(theta), dz = R cos(theta)
+ * dtheta, rho = R cos(theta), which removes the branch points of rho(z) at the poles.
+ * A has kinks where the disc touches an edge of the rectangle (A ~ (rho - d)^(3/2)) or
+ * passes a corner; the range is split there, and each piece [a, b] is integrated by
+ * 20-point Gauss-Legendre in u with theta = a + (b - a)(1 - cos(pi u))/2, which makes the
+ * integrand analytic at the piece's ends (theta - a ~ u^2). Relative error ~1e-13
+ * (tests/check_analysis.c compares with closed forms and additivity).
  */
 #include <math.h>
 #include <stddef.h>
@@ -144,33 +146,35 @@ double dem_sphere_box_volume(const double c[3], double R, const dem_box *b) {
   double za = fmax(b->lo[2] - c[2], -R), zb = fmin(b->hi[2] - c[2], R);
   if (!(zb > za)) return 0.0;
 
-  /* Break points: the disc touches an edge line (d = |x0|, ...) or passes a corner. */
+  /* Integrate over theta, z = R sin(theta), rho = R cos(theta): no branch points of
+   * rho(z) = sqrt(R^2 - z^2) near the ends of a piece. Break points where the disc touches an
+   * edge line (d = |x0|, ...) or passes a corner: cos(theta) = d / R. */
   double dist[8] = {fabs(x0), fabs(x1), fabs(y0), fabs(y1),
                     hypot(x0, y0), hypot(x0, y1), hypot(x1, y0), hypot(x1, y1)};
-  double zs[20];
-  int nz = 0;
-  zs[nz++] = za;
+  double ta = asin(fmax(za / R, -1.0)), tb = asin(fmin(zb / R, 1.0));
+  double ts[20];
+  int nt = 0;
+  ts[nt++] = ta;
   for (int i = 0; i < 8; i++) {
     if (dist[i] >= R) continue;
-    double zz = sqrt(R * R - dist[i] * dist[i]);
-    if (zz > za && zz < zb) zs[nz++] = zz;
-    if (-zz > za && -zz < zb) zs[nz++] = -zz;
+    double tt = acos(dist[i] / R);
+    if (tt > ta && tt < tb) ts[nt++] = tt;
+    if (-tt > ta && -tt < tb) ts[nt++] = -tt;
   }
-  zs[nz++] = zb;
-  sort_small(zs, nz);
+  ts[nt++] = tb;
+  sort_small(ts, nt);
 
   double vol = 0.0;
-  for (int p = 0; p + 1 < nz; p++) {
-    double a = zs[p], h = zs[p + 1] - a;
+  for (int p = 0; p + 1 < nt; p++) {
+    double a = ts[p], h = ts[p + 1] - a;
     if (!(h > 0.0)) continue;
     double sum = 0.0;
     for (int q = 0; q < 20; q++) {
       double u = gl20[q][0];
-      double z = a + 0.5 * h * (1.0 - cos(M_PI * u));
-      double dz = 0.5 * h * M_PI * sin(M_PI * u);
-      double r2 = R * R - z * z;
-      double rho = r2 > 0.0 ? sqrt(r2) : 0.0;
-      sum += gl20[q][1] * dz * disc_rect_area(rho, x0, x1, y0, y1);
+      double t = a + 0.5 * h * (1.0 - cos(M_PI * u));
+      double dt = 0.5 * h * M_PI * sin(M_PI * u);
+      double rho = R * cos(t);
+      sum += gl20[q][1] * dt * rho * disc_rect_area(rho, x0, x1, y0, y1);
     }
     vol += sum;
   }
