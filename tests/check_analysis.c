@@ -36,6 +36,12 @@ START_TEST(test_hardness) {
   ck_assert(isnan(dem_hardness(F, D, -1e-4)));
   ck_assert(isnan(dem_hardness(F, -D, h)));
   ck_assert(isnan(dem_indent_area(D, NAN)));
+  /* Origin sensitivity against a central difference of ln H. */
+  double dh = 1e-9, sens = dem_hardness_origin_sensitivity(D, h);
+  RELTOL(sens, -(log(dem_hardness(F, D, h + dh)) - log(dem_hardness(F, D, h - dh))) / (2 * dh),
+         1e-6);
+  ck_assert_double_eq(dem_hardness_origin_sensitivity(D, 0.6 * D), 0.0);
+  ck_assert(isnan(dem_hardness_origin_sensitivity(D, 0.0)));
 
   double Fs[4] = {0.1, 0.7, 1.9, 2.385}, hs[4] = {-1e-4, 0.2e-3, 0.6e-3, 0.911e-3}, H[4], hd[4];
   dem_err err = {0};

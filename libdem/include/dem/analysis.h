@@ -31,6 +31,11 @@ double dem_indent_area(double D, double h);
 /* Hardness H = F / A(h) (Pa), thesis 2.7 with 2.9. NaN if h <= 0, D <= 0 or non-finite. */
 double dem_hardness(double F, double D, double h);
 
+/* Sensitivity of H to the depth origin at fixed force: -d ln H / d h = (D - 2h) / (D h - h^2)
+ * (1/m) for 0 < h < D/2 (0 beyond). A surface error dz shifts H by about -dz times this
+ * (relative): docs/analysis.md. NaN outside the domain. */
+double dem_hardness_origin_sensitivity(double D, double h);
+
 /* A loading curve: h[i] = z_surface - z_tip[i] (m, depth below the bed surface, see
  * dem_bed_surface), F[i] the indenter force (N, > 0 pushing the bed). Writes H[i] (Pa; NaN
  * where h[i] <= 0: no area yet) and, if hd != NULL, the dimensionless penetration

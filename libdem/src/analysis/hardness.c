@@ -25,6 +25,12 @@ double dem_hardness(double F, double D, double h) {
   return F / dem_indent_area(D, h);
 }
 
+double dem_hardness_origin_sensitivity(double D, double h) {
+  if (!(D > 0.0) || !(h > 0.0) || !isfinite(D) || !isfinite(h)) return NAN;
+  if (h >= 0.5 * D) return 0.0;
+  return (D - 2.0 * h) / (D * h - h * h);
+}
+
 int dem_hardness_curve(size_t n, const double *F, const double *h, double D, double *H,
                        double *hd, dem_err *err) {
   if (!(D > 0.0) || !isfinite(D))
