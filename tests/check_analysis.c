@@ -430,6 +430,35 @@ START_TEST(test_compare) {
   ck_assert(strstr(err.msg, "level = 0.7"));
   ck_assert_int_eq(dem_compare_means(NAN, 1, 2, 1, 0.05, DEM_TEST_TWO_SIDED, &c, &err),
                    DEM_ENONFINITE);
+
+  /* Welch: equal se and nu = 4 each gives nu = 8; t_{0.975, 8} = 2.306004135. A 2.1 se
+   * separation is "different" under z but not under t with 8 degrees of freedom. */
+  ck_assert_int_eq(dem_compare_means_t(2.1 * sqrt(2.0), 1.0, 4.0, 0.0, 1.0, 4.0, 0.05,
+                                       DEM_TEST_TWO_SIDED, &c, &err), DEM_OK);
+  RELTOL(c.z_crit, 2.306004135, 1e-8);
+  ck_assert_int_eq(c.different, 0);
+  ck_assert_int_eq(dem_compare_means(2.1 * sqrt(2.0), 1.0, 0.0, 1.0, 0.05, DEM_TEST_TWO_SIDED,
+                                     &c, &err), DEM_OK);
+  ck_assert_int_eq(c.different, 1);
+  /* Infinite nu on both sides is the z-test; one-sided with t_{0.95, 8} = 1.859548038. */
+  ck_assert_int_eq(dem_compare_means_t(1.0, 0.6, INFINITY, 0.0, 0.8, INFINITY, 0.05,
+                                       DEM_TEST_TWO_SIDED, &c, &err), DEM_OK);
+  RELTOL(c.z_crit, 1.959963984540054, 1e-9);
+  ck_assert_int_eq(dem_compare_means_t(0.0, 1.0, 4.0, 2.0 * sqrt(2.0), 1.0, 4.0, 0.05,
+                                       DEM_TEST_LESS, &c, &err), DEM_OK);
+  RELTOL(c.z_crit, -1.859548038, 1e-8);
+  ck_assert_int_eq(c.different, 1);
+  ck_assert_int_eq(dem_compare_means_t(1, 1, 0.5, 2, 1, 3, 0.05, DEM_TEST_TWO_SIDED, &c, &err),
+                   DEM_ERANGE);
+  ck_assert(strstr(err.msg, "nu1 = 0.5"));
+
+  /* Replicates: mean and sd / sqrt(k). */
+  double reps[4] = {6.1e3, 5.8e3, 6.4e3, 5.9e3}, m, se;
+  ck_assert_int_eq(dem_replicates_mean(4, reps, &m, &se, &err), DEM_OK);
+  RELTOL(m, 6.05e3, 1e-14);
+  RELTOL(se, sqrt((0.05 * 0.05 + 0.25 * 0.25 + 0.35 * 0.35 + 0.15 * 0.15) * 1e6 / 3.0 / 4.0),
+         1e-12);
+  ck_assert_int_eq(dem_replicates_mean(1, reps, &m, &se, &err), DEM_ERANGE);
 }
 END_TEST
 

@@ -168,6 +168,19 @@ typedef struct dem_comparison {
 int dem_compare_means(double mean1, double se1, double mean2, double se2, double level,
                       dem_alternative alt, dem_comparison *out, dem_err *err);
 
+/* The same with Student's t and Welch-Satterthwaite degrees of freedom
+ * nu = (se1^2 + se2^2)^2 / (se1^4 / nu1 + se2^4 / nu2), for few effective samples or few
+ * replicate beds: nu_i = k_i - 1 for the mean of k_i replicates, ~ n_eff - 1 for one series.
+ * nu1, nu2 >= 1 (INFINITY: that side's se is exact); both infinite gives the z-test. z and
+ * z_crit are then t and t_crit. */
+int dem_compare_means_t(double mean1, double se1, double nu1, double mean2, double se2,
+                        double nu2, double level, dem_alternative alt, dem_comparison *out,
+                        dem_err *err);
+
+/* Replicates (beds with different seeds): the mean of k >= 2 replicate plateau means and its
+ * standard error from their spread, sd / sqrt(k) (degrees of freedom k - 1). */
+int dem_replicates_mean(size_t k, const double *means, double *mean, double *se, dem_err *err);
+
 /* ---- measurement volumes --------------------------------------------------------------- */
 
 /* An axis-aligned cuboid [lo, hi] (m). */

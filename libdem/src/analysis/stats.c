@@ -171,8 +171,9 @@ int dem_plateau_stats(size_t n, const double *hd, const double *y, double lo, do
   return DEM_OK;
 }
 
-int dem_compare_means(double mean1, double se1, double mean2, double se2, double level,
-                      dem_alternative alt, dem_comparison *out, dem_err *err) {
+/* The z-test (nu = INFINITY) or Welch's t-test. */
+static int compare(double mean1, double se1, double nu1, double mean2, double se2, double nu2,
+                   double level, dem_alternative alt, dem_comparison *out, dem_err *err) {
   if (!isfinite(mean1) || !isfinite(mean2) || !isfinite(se1) || !isfinite(se2))
     return dem_err_set(err, DEM_ENONFINITE, "compare: mean1 = %g, se1 = %g, mean2 = %g, se2 = "
                        "%g", mean1, se1, mean2, se2);
@@ -181,29 +182,66 @@ int dem_compare_means(double mean1, double se1, double mean2, double se2, double
                        "0", se1, se2);
   if (!(level > 0.0 && level < 0.5))
     return dem_err_set(err, DEM_ERANGE, "compare: level = %g, must be in (0, 0.5)", level);
+  if (!(nu1 >= 1.0) || !(nu2 >= 1.0))
+    return dem_err_set(err, DEM_ERANGE, "compare: degrees of freedom nu1 = %g, nu2 = %g, must "
+                       "be >= 1", nu1, nu2);
   out->diff = mean1 - mean2;
   out->se = sqrt(se1 * se1 + se2 * se2);
   out->z = out->diff / out->se;
   out->level = level;
+  double a1 = se1 * se1, a2 = se2 * se2;
+  double den = (isinf(nu1) ? 0.0 : a1 * a1 / nu1) + (isinf(nu2) ? 0.0 : a2 * a2 / nu2);
+  double nu = den > 0.0 ? (a1 + a2) * (a1 + a2) / den : INFINITY;
+  /* Upper tail Q(z) and its inverse for the distribution in use. */
+#define TAIL_Q(t) (isinf(nu) ? gsl_cdf_ugaussian_Q(t) : gsl_cdf_tdist_Q((t), nu))
+#define TAIL_QINV(p) (isinf(nu) ? gsl_cdf_ugaussian_Qinv(p) : gsl_cdf_tdist_Qinv((p), nu))
   switch (alt) {
   case DEM_TEST_TWO_SIDED:
-    out->p = 2.0 * gsl_cdf_ugaussian_Q(fabs(out->z));
-    out->z_crit = gsl_cdf_ugaussian_Qinv(0.5 * level);
+    out->p = 2.0 * TAIL_Q(fabs(out->z));
+    out->z_crit = TAIL_QINV(0.5 * level);
     out->different = fabs(out->z) > out->z_crit;
     break;
   case DEM_TEST_GREATER:
-    out->p = gsl_cdf_ugaussian_Q(out->z);
-    out->z_crit = gsl_cdf_ugaussian_Qinv(level);
+    out->p = TAIL_Q(out->z);
+    out->z_crit = TAIL_QINV(level);
     out->different = out->z > out->z_crit;
     break;
   case DEM_TEST_LESS:
-    out->p = gsl_cdf_ugaussian_P(out->z);
-    out->z_crit = -gsl_cdf_ugaussian_Qinv(level);
+    out->p = TAIL_Q(-out->z);
+    out->z_crit = -TAIL_QINV(level);
     out->different = out->z < out->z_crit;
     break;
   default:
     return dem_err_set(err, DEM_ERANGE, "compare: alternative = %d, must be TWO_SIDED, GREATER "
                        "or LESS", (int)alt);
   }
+#undef TAIL_Q
+#undef TAIL_QINV
+  return DEM_OK;
+}
+
+int dem_compare_means(double mean1, double se1, double mean2, double se2, double level,
+                      dem_alternative alt, dem_comparison *out, dem_err *err) {
+  return compare(mean1, se1, INFINITY, mean2, se2, INFINITY, level, alt, out, err);
+}
+
+int dem_compare_means_t(double mean1, double se1, double nu1, double mean2, double se2,
+                        double nu2, double level, dem_alternative alt, dem_comparison *out,
+                        dem_err *err) {
+  return compare(mean1, se1, nu1, mean2, se2, nu2, level, alt, out, err);
+}
+
+int dem_replicates_mean(size_t k, const double *means, double *mean, double *se, dem_err *err) {
+  if (k < 2) return dem_err_set(err, DEM_ERANGE, "replicates: k = %zu, need at least 2", k);
+  double m = 0.0, ss = 0.0;
+  for (size_t i = 0; i < k; i++) {
+    if (!isfinite(means[i]))
+      return dem_err_set(err, DEM_ENONFINITE, "replicates: mean %zu = %g", i, means[i]);
+    m += means[i];
+  }
+  m /= (double)k;
+  for (size_t i = 0; i < k; i++) ss += (means[i] - m) * (means[i] - m);
+  *mean = m;
+  *se = sqrt(ss / (double)(k - 1) / (double)k);
   return DEM_OK;
 }
