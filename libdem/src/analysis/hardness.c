@@ -35,6 +35,8 @@ int dem_hardness_curve(size_t n, const double *F, const double *h, double D, dou
                        double *hd, dem_err *err) {
   if (!(D > 0.0) || !isfinite(D))
     return dem_err_set(err, DEM_ERANGE, "hardness: indenter diameter D = %g m, must be > 0", D);
+  if (n > 0 && (!F || !h || !H))
+    return dem_err_set(err, DEM_EINVAL, "hardness: NULL F, h or H array with n = %zu", n);
   for (size_t i = 0; i < n; i++) {
     if (!isfinite(F[i]) || !isfinite(h[i]))
       return dem_err_set(err, DEM_ENONFINITE, "hardness: sample %zu: F = %g N, h = %g m", i,
@@ -47,6 +49,8 @@ int dem_hardness_curve(size_t n, const double *F, const double *h, double D, dou
 
 int dem_bed_surface(size_t n, const double *x, const double *radius, double ax, double ay,
                     double r_foot, double cell, double pct, dem_surface *out, dem_err *err) {
+  if (n > 0 && (!x || !radius))
+    return dem_err_set(err, DEM_EINVAL, "bed surface: NULL particle arrays with n = %zu", n);
   if (!(r_foot > 0.0) || !isfinite(r_foot))
     return dem_err_set(err, DEM_ERANGE, "bed surface: r_foot = %g m, must be > 0", r_foot);
   if (!(cell >= 0.0) || !isfinite(cell))

@@ -63,6 +63,7 @@ int dem_series_analyse(size_t n, const double *x, const double *y,
     return dem_err_set(err, DEM_ERANGE, "series: c_window = %g, must be in [1, 100]",
                        o.c_window);
   if (n < 4) return dem_err_set(err, DEM_ERANGE, "series: n = %zu samples, need at least 4", n);
+  if (!y) return dem_err_set(err, DEM_EINVAL, "series: NULL y");
   if (o.method == DEM_SE_BATCH && (o.nbatch < 2 || o.nbatch > n / 2))
     return dem_err_set(err, DEM_ERANGE, "series: nbatch = %zu, must be in [2, n/2 = %zu]",
                        o.nbatch, n / 2);
@@ -148,6 +149,8 @@ int dem_plateau_stats(size_t n, const double *hd, const double *y, double lo, do
   if (!(lo < hi) || !isfinite(lo) || !isfinite(hi))
     return dem_err_set(err, DEM_ERANGE, "plateau: window [%g, %g] of h/r, need lo < hi", lo,
                        hi);
+  if (n > 0 && (!hd || !y))
+    return dem_err_set(err, DEM_EINVAL, "plateau: NULL hd or y with n = %zu", n);
   size_t m = 0;
   for (size_t i = 0; i < n; i++)
     if (hd[i] >= lo && hd[i] <= hi) m++;

@@ -105,6 +105,7 @@ int dem_unload_analyse(size_t n, const double *h, const double *F, double D,
                        (int)method);
   if (n < 3)
     return dem_err_set(err, DEM_ERANGE, "unloading: %zu points, need at least 3", n);
+  if (!h || !F) return dem_err_set(err, DEM_EINVAL, "unloading: NULL h or F");
   for (size_t i = 0; i < n; i++)
     if (!isfinite(h[i]) || !isfinite(F[i]))
       return dem_err_set(err, DEM_ENONFINITE, "unloading: point %zu: h = %g m, F = %g N", i,
