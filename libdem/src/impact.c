@@ -327,6 +327,9 @@ int dem_impact_run(const dem_impact_scene *sc, const dem_impact_opts *o, double 
   if (!sc || !o || !res || !sc->law.law)
     return dem_err_set(err, DEM_EINVAL, "dem_impact_run: NULL or unset argument");
   memset(res, 0, sizeof *res);
+  res->v_rebound = res->e = res->alpha_max = res->alpha_p = NAN;
+  res->f_max = res->f_pulloff = res->t_contact = res->w_damp = NAN;
+  res->v_impact = v;
   if (!isfinite(v))
     return dem_err_set(err, DEM_ENONFINITE, "impact velocity %g m/s is not finite", v);
   if (!(v > 0.0) || v > 1e4)
@@ -349,17 +352,27 @@ int dem_impact_run(const dem_impact_scene *sc, const dem_impact_opts *o, double 
   if (!(dem_contact_kref(&sc->law, &sc->geom, v) > 0.0))
     return dem_err_set(err, DEM_EPHYSICS, "law '%s' reports no stiffness for v = %g m/s",
                        sc->law.law->name, v);
+  int rc;
   switch (o->integrator) {
   case DEM_INTEGRATOR_VERLET:
-    return run_verlet(sc, o, v, res, err);
+    rc = run_verlet(sc, o, v, res, err);
+    break;
   case DEM_INTEGRATOR_REFERENCE:
     if (!(o->rtol >= 1e-14 && o->rtol <= 1e-3))
       return dem_err_set(err, DEM_ERANGE, "rtol %g is outside the allowed range [1e-14, 1e-3]",
                          o->rtol);
-    return dem_impact_run_reference(sc, o, v, res, err);
+    rc = dem_impact_run_reference(sc, o, v, res, err);
+    break;
   default:
     return dem_err_set(err, DEM_EINVAL, "unknown integrator %d", (int)o->integrator);
   }
+  if (rc != DEM_OK) {
+    /* A failed run reports no numbers a caller could mistake for results. */
+    res->v_rebound = res->e = res->alpha_max = res->alpha_p = NAN;
+    res->f_max = res->f_pulloff = res->t_contact = res->w_damp = NAN;
+    res->stuck = 0;
+  }
+  return rc;
 }
 
 /* Sticking velocity: log grid, then bisection between the fastest sticking grid point and
