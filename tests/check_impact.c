@@ -203,6 +203,9 @@ START_TEST(test_hertz_clipped) {
     ck_assert(r[j].f_pulloff == 0.0);
   }
   ck_assert_msg(REL(r[0].e, r[1].e) < tol, "clipped e depends on v: %g vs %g", r[0].e, r[1].e);
+  /* ... and equals the clipped restitution of the dimensionless impact (damping.c). */
+  double e_clip = dem_damping_restitution_hertz(dem_damping_eta_hertz(e, 0), 1);
+  ck_assert_msg(REL(r[0].e, e_clip) < tol, "clipped e %.10g vs %.10g", r[0].e, e_clip);
   /* The clipped constant: a law set up with e' gives eta(e', 0) = eta(e, 1). */
   double ep = e_for_eta(dem_damping_eta_hertz(e, 1));
   ck_assert(ep < e);
