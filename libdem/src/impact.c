@@ -198,7 +198,7 @@ static int run_verlet(const dem_impact_scene *sc, const dem_impact_opts *o, doub
   const dem_contact *ct = &sc->law;
   const dem_geom *g = &sc->geom;
   const int nhist = ct->law->nhist, clip = o->clip_tensile;
-  const double m = g->m, dt = dem_impact_dt(sc, o, v0);
+  const double m = g->m, inv_m = 1.0 / g->m, dt = dem_impact_dt(sc, o, v0);
   const double tscale = dem_impact_tscale(sc, v0), t_max = dem_impact_tmax(sc, o, v0);
   const double a_run = o->runaway_overlap * sc->R;
   res->dt = dt;
@@ -247,7 +247,7 @@ static int run_verlet(const dem_impact_scene *sc, const dem_impact_opts *o, doub
     const double v_pred = v_n + dt * acc_n;
     dem_contact_force(ct, g, hist, alpha, v_pred, &n);
     const double f = dem_impact_applied(&n, clip);
-    acc = -f / m;
+    acc = -f * inv_m;
     v = v_n + 0.5 * dt * (acc_n + acc);
     t = t_n + dt;
     step++;
@@ -258,7 +258,7 @@ static int run_verlet(const dem_impact_scene *sc, const dem_impact_opts *o, doub
                          ct->law->name, t, step, alpha, v, f, dt);
     /* Verlet is stable for omega dt < 2 only, omega^2 = k/m* with the branch stiffness;
      * the explicit damping term for c dt / m* < 2 only. */
-    if (n.k * dt * dt > 4.0 * m || (v_pred != 0.0 && fabs(n.f_damp / v_pred) * dt > 2.0 * m))
+    if (n.k * dt * dt > 4.0 * m || fabs(n.f_damp) * dt > 2.0 * m * fabs(v_pred))
       return dem_err_set(err, DEM_EUNSTABLE,
                          "law '%s': dt = %g s exceeds Verlet's stability limit 2 sqrt(m* / k) = "
                          "%g s (or 2 m*/c = %g s for the damping) at t = %g s (step %ld, alpha = "
