@@ -134,6 +134,7 @@ int dem_impact_run_reference(const dem_impact_scene *sc, const dem_impact_opts *
     fputs("t,alpha,alpha_dot,f,f_el,f_damp\n", o->trace);
   }
   double fx3[3] = {0, 0, 0}, ff3[3] = {0, 0, 0}; /* last three (t, f) samples */
+  int turn3[3] = {0, 0, 0};                     /* sample is a turning point */
   int nf = 0;
   long steps = 0;
   for (;;) {
@@ -191,7 +192,11 @@ int dem_impact_run_reference(const dem_impact_scene *sc, const dem_impact_opts *
     /* f_max refinement through the last three samples. */
     fx3[0] = fx3[1]; fx3[1] = fx3[2]; fx3[2] = t;
     ff3[0] = ff3[1]; ff3[1] = ff3[2]; ff3[2] = f;
-    if (++nf >= 3 && ff3[1] >= ff3[0] && ff3[1] >= ff3[2] && fx3[0] < fx3[1] && fx3[1] < fx3[2]) {
+    turn3[0] = turn3[1]; turn3[1] = turn3[2]; turn3[2] = (evs & EV_TURN) != 0;
+    /* Not across a turning point: a plastic law's force has a kink there (loading and
+     * unloading stiffness differ), and the event sample is then the exact maximum. */
+    if (++nf >= 3 && !turn3[1] && ff3[1] >= ff3[0] && ff3[1] >= ff3[2] && fx3[0] < fx3[1] &&
+        fx3[1] < fx3[2]) {
       double fp = parabola_peak(fx3, ff3);
       if (fp > sum.f_max) sum.f_max = fp;
     }
