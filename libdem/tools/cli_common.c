@@ -118,7 +118,7 @@ void cli_list_laws(FILE *out) {
         snprintf(def, sizeof def, "optional"); /* a sentinel: the law derives it */
       else
         snprintf(def, sizeof def, "default %g", s->def);
-      fprintf(out, "    %-8s %-7s %-16s %-16s %s\n", s->key, s->unit, range, def, s->about);
+      fprintf(out, "    %-10s %-7s %-16s %-16s %s\n", s->key, s->unit, range, def, s->about);
     }
   }
   fprintf(out, "scene keys (every law): R (m, required), rho (kg/m^3, required for impacts), "
