@@ -102,7 +102,7 @@ EOF
 
   if [[ "$flags" == *adhesive* || "$flags" == *plastic* ]]; then
     for ext in csv h5; do
-      "$IMPACT" --law "$law" "${args[@]}" --sweep 0.02:20:40 --dt-factor 0.01 \
+      "$IMPACT" --law "$law" "${args[@]}" --sweep 0.02:50:45 --dt-factor 0.01 \
         --out "$OUT/e-v-$law.$ext" > /dev/null
     done
     vs="none found"
