@@ -12,7 +12,7 @@
 # Usage: bash scripts/jobs/10-single-contact.sh BIN_DIR OUT_DIR
 # Writes OUT_DIR/single-contact/: per law a prescribed-path force-overlap curve (CSV, HDF5,
 # PNG), impact force-overlap traces at 2, 5 and 10 m/s (CSV, JSON, PNG), and for adhesive or
-# plastic laws e(v) (CSV, HDF5, PNG) and the critical sticking velocity (JSON).
+# plastic laws e(v) over 0.02-50 m/s (CSV, HDF5, PNG) and the critical sticking velocity (JSON).
 # Laws are taken from `dem-impact --list-laws`, so laws added later appear automatically; a
 # law that needs a coefficient this set does not provide is skipped with a message.
 set -euo pipefail
