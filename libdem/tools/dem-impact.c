@@ -248,8 +248,13 @@ int main(int argc, char **argv) {
   if (!fl.law[0]) memcpy(fl.law, cf.law, sizeof fl.law);
 #define MERGE_D(f) if (isnan(fl.f)) fl.f = cf.f
 #define MERGE_I(f) if (fl.f < 0) fl.f = cf.f
-  MERGE_D(velocity); MERGE_D(v_min); MERGE_D(v_max); MERGE_D(dt_factor); MERGE_D(rtol);
-  MERGE_I(sticking); MERGE_I(target); MERGE_I(dt_rule); MERGE_I(integrator); MERGE_I(clip_tensile);
+  /* What to compute: a mode given by a flag replaces the file's mode. */
+  if (isnan(fl.velocity) && fl.sticking != 1 && !sweep) {
+    MERGE_D(velocity);
+    MERGE_I(sticking);
+  }
+  MERGE_D(v_min); MERGE_D(v_max); MERGE_D(dt_factor); MERGE_D(rtol);
+  MERGE_I(target); MERGE_I(dt_rule); MERGE_I(integrator); MERGE_I(clip_tensile);
   if (!fl.law[0]) {
     dem_err_set(&err, DEM_EMISSING, "--law is required (see --list-laws)");
     return usage_error(&err);
