@@ -29,7 +29,7 @@
 #include "dem/material.h"
 #include "jkr_core.h"
 
-const dem_coef_spec dem_jkr_coefs[] = {
+const dem_coef_spec dem_jkrlaw_coefs[] = {
     {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
     {"nu", "-", "Poisson's ratio of the particle", -0.99, 0.5, NAN},
     {"wall_E", "Pa", "Young's modulus of the wall or second particle (default: E; 1e30 = rigid)",
@@ -41,7 +41,7 @@ const dem_coef_spec dem_jkr_coefs[] = {
      1.0},
 };
 
-int dem_jkr_set_coeffs(const dem_params *ps, double *c, dem_err *err) {
+int dem_jkrlaw_set_coeffs(const dem_params *ps, double *c, dem_err *err) {
   double E = dem_params_get_or(ps, "E", NAN), nu = dem_params_get_or(ps, "nu", NAN);
   double wE = dem_params_get_or(ps, "wall_E", -1.0), wnu = dem_params_get_or(ps, "wall_nu", -2.0);
   if (wE < 0.0) wE = E;
@@ -58,7 +58,7 @@ int dem_jkr_set_coeffs(const dem_params *ps, double *c, dem_err *err) {
   return DEM_OK;
 }
 
-void dem_jkr_force(const double *c, const dem_geom *g, double *hist, double alpha,
+void dem_jkrlaw_force(const double *c, const dem_geom *g, double *hist, double alpha,
                    double alpha_dot, dem_normal *out, int break_at_zero) {
   if (hist[DEM_HIST_STATE] == 0.0) {
     if (!(alpha >= 0.0)) {
@@ -93,7 +93,7 @@ void dem_jkr_force(const double *c, const dem_geom *g, double *hist, double alph
  * overlap (15 m* v^2 / (16 E* sqrt(R*)))^(2/5) shifted by the zero-force overlap alpha_0
  * (the JKR curve is close to Hertz shifted by alpha_0 at large load); never below the
  * stiffness at alpha_0. */
-double dem_jkr_kref(const double *c, const dem_geom *g, double v) {
+double dem_jkrlaw_kref(const double *c, const dem_geom *g, double v) {
   double Es = c[DEM_JKR_C_ES], fc, dc;
   dem_jkr_scales(c[DEM_JKR_C_GAMMA], Es, g->R, &fc, &dc);
   double ahz = pow(15.0 * g->m * v * v / (16.0 * Es * sqrt(g->R)), 0.4);
@@ -103,7 +103,7 @@ double dem_jkr_kref(const double *c, const dem_geom *g, double v) {
 
 static void force(const double *c, const dem_geom *g, double *hist, double alpha,
                   double alpha_dot, dem_normal *out) {
-  dem_jkr_force(c, g, hist, alpha, alpha_dot, out, 0);
+  dem_jkrlaw_force(c, g, hist, alpha, alpha_dot, out, 0);
 }
 
 const dem_law dem_law_jkr = {
@@ -111,11 +111,11 @@ const dem_law dem_law_jkr = {
     .title = "JKR elastic-adhesive (full: contact radius from the overlap), breaks at alpha_f",
     .source = "thesis eqs (3.40)-(3.42); paper eqs (B1)-(B11)",
     .ncoef = DEM_JKR_NCOEFS,
-    .coef = dem_jkr_coefs,
+    .coef = dem_jkrlaw_coefs,
     .nhist = DEM_JKR_NHIST,
     .flags = DEM_LAW_ADHESIVE | DEM_LAW_NONLINEAR,
-    .set_coeffs = dem_jkr_set_coeffs,
+    .set_coeffs = dem_jkrlaw_set_coeffs,
     .init = NULL,
     .force = force,
-    .kref = dem_jkr_kref,
+    .kref = dem_jkrlaw_kref,
 };

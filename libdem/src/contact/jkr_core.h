@@ -126,11 +126,11 @@ enum { DEM_JKR_H_FC = 1, DEM_JKR_H_IDC = 2, DEM_JKR_NHIST = 3 };
 
 /* The coefficient table, shared (a definition of another length fails to compile). */
 #define DEM_JKR_NCOEFS 6
-extern const dem_coef_spec dem_jkr_coefs[DEM_JKR_NCOEFS];
-int dem_jkr_set_coeffs(const dem_params *ps, double *c, dem_err *err);
-double dem_jkr_kref(const double *c, const dem_geom *g, double v);
+extern const dem_coef_spec dem_jkrlaw_coefs[DEM_JKR_NCOEFS];
+int dem_jkrlaw_set_coeffs(const dem_params *ps, double *c, dem_err *err);
+double dem_jkrlaw_kref(const double *c, const dem_geom *g, double v);
 /* break_at_zero = 0: JKR breaks below alpha_f; 1: `jkr-modified`, breaks below alpha = 0. */
-void dem_jkr_force(const double *c, const dem_geom *g, double *hist, double alpha,
+void dem_jkrlaw_force(const double *c, const dem_geom *g, double *hist, double alpha,
                    double alpha_dot, dem_normal *out, int break_at_zero);
 
 #endif

@@ -14,7 +14,7 @@
 
 static void force(const double *c, const dem_geom *g, double *hist, double alpha,
                   double alpha_dot, dem_normal *out) {
-  dem_jkr_force(c, g, hist, alpha, alpha_dot, out, 1);
+  dem_jkrlaw_force(c, g, hist, alpha, alpha_dot, out, 1);
 }
 
 const dem_law dem_law_jkr_modified = {
@@ -22,11 +22,11 @@ const dem_law dem_law_jkr_modified = {
     .title = "modified JKR: JKR curve for alpha >= 0, breaks at alpha = 0",
     .source = "thesis section 5.1.1 and Fig 5.1; curve eqs (3.40)-(3.42)",
     .ncoef = DEM_JKR_NCOEFS,
-    .coef = dem_jkr_coefs,
+    .coef = dem_jkrlaw_coefs,
     .nhist = DEM_JKR_NHIST,
     .flags = DEM_LAW_ADHESIVE | DEM_LAW_NONLINEAR,
-    .set_coeffs = dem_jkr_set_coeffs,
+    .set_coeffs = dem_jkrlaw_set_coeffs,
     .init = NULL,
     .force = force,
-    .kref = dem_jkr_kref,
+    .kref = dem_jkrlaw_kref,
 };
