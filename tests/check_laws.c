@@ -22,6 +22,7 @@
 #include "../libdem/src/contact/jkr_core.h"
 #include "dem/contact.h"
 #include "dem/error.h"
+#include "dem/jkr_radius.h"
 #include "dem/material.h"
 #include "dem/params.h"
 
@@ -314,6 +315,33 @@ START_TEST(test_jkr_root) {
   ck_assert_double_eq_tol(DEM_JKR_AF, -cbrt(1.0 / 3.0), 1e-16);
   /* Huge overlaps stay finite. */
   ck_assert(isfinite(dem_jkr_fhat(dem_jkr_root(1e300))));
+}
+END_TEST
+
+START_TEST(test_jkr_cross_check) {
+  /* The law's force against the independent JKR helper of dem/jkr_radius.h (written for
+   * thornton-ning, another scaling, libm cbrt and a Newton polish): F(a(alpha)) along the
+   * whole stable branch, to round-off. */
+  dem_params ps;
+  jkr_params(&ps);
+  dem_contact ct;
+  setup_law(&ct, "jkr", &ps);
+  dem_geom g = ref_geom();
+  jkr_ref j = jkr_reference(g.R);
+  double hist[DEM_LAW_NHIST_MAX] = {0};
+  ev(&ct, &g, hist, 0.0);
+  ck_assert_double_eq_tol(dem_jkr_alpha_f(g.R, j.Es, GAMMA_REF), j.alpha_f,
+                          1e-12 * fabs(j.alpha_f));
+  double worst = 0.0;
+  for (double t = 0.0; t <= 1.0; t += 1e-3) {
+    /* from just above alpha_f to 1000 alpha_0, denser near alpha_f */
+    double a = j.alpha_f + (1000.0 * j.alpha_0 - j.alpha_f) * t * t * t + 1e-6 * fabs(j.alpha_f);
+    double F = ev(&ct, &g, hist, a).f;
+    double Fr = dem_jkr_force(g.R, j.Es, GAMMA_REF, dem_jkr_radius(g.R, j.Es, GAMMA_REF, a));
+    double d = fabs(F - Fr) / (fabs(Fr) + j.fc);
+    if (d > worst) worst = d;
+  }
+  ck_assert_msg(worst < 1e-11, "largest difference %g f_c", worst);
 }
 END_TEST
 
@@ -675,6 +703,7 @@ static Suite *suite(void) {
   tc = tcase_create("jkr");
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, test_jkr_root);
+  tcase_add_test(tc, test_jkr_cross_check);
   tcase_add_test(tc, test_jkr_curve);
   tcase_add_test(tc, test_jkr_work_of_adhesion);
   tcase_add_test(tc, test_jkr_modified_curve);
