@@ -210,6 +210,26 @@ START_TEST(test_walton_braun_restitution) {
     dem_impact_result r = run(&sc, v[i]);
     ck_assert_msg(fabs(r.e - sqrt(210.0 / 1500.0)) < 2e-3, "v = %g: e = %g", v[i], r.e);
   }
+  /* With damping: both branches are linear springs with the same damping ratio
+   * zeta = eta(e)/2, and the phases of the loading (equilibrium to rest) and of the
+   * unloading (rest to equilibrium) add up to half a damped period, so the restitution is
+   * exactly e x sqrt(k_p / k_e) (observed to 1e-8 with the reference integrator). */
+  scene(&sc, "walton-braun", "kp", 210.0, "ke", 1500.0);
+  {
+    dem_params ps;
+    dem_err err = {0};
+    dem_params_init(&ps);
+    dem_params_set(&ps, "R", R_REF, "test", &err);
+    dem_params_set(&ps, "rho", RHO_REF, "test", &err);
+    dem_params_set(&ps, "kp", 210.0, "test", &err);
+    dem_params_set(&ps, "ke", 1500.0, "test", &err);
+    dem_params_set(&ps, "e", 0.5, "test", &err);
+    ck_assert_int_eq(dem_impact_setup(&sc, dem_contact_law_find("walton-braun"), &ps,
+                                      DEM_TARGET_WALL, &err),
+                     DEM_OK);
+    dem_impact_result r = run(&sc, 1.0);
+    ck_assert_msg(fabs(r.e - 0.5 * sqrt(210.0 / 1500.0)) < 2e-3, "damped e = %g", r.e);
+  }
   /* k_e = k_p + S F_max: e falls with velocity, e = sqrt(k_p / (k_p + S v sqrt(m k_p))). */
   scene(&sc, "walton-braun", "kp", 210.0, "S", 2e8);
   double m = dem_sphere_mass(R_REF, RHO_REF), prev = 1.0;
