@@ -24,6 +24,7 @@
 #include "dem/material.h"
 #include "dem/params.h"
 #include "dem/tangential.h"
+#include "cli_common.h"
 
 #ifndef DEM_SHARED_DIR
 #define DEM_SHARED_DIR "../shared"
@@ -84,22 +85,31 @@ int main(int argc, char **argv) {
   const char *file = DEM_SHARED_DIR "/bench/dense20k.csv";
   for (int a = 1; a < argc; a++) {
     const char *s = argv[a];
-    if (!strcmp(s, "--particles") && a + 1 < argc) nwant = atol(argv[++a]);
-    else if (!strcmp(s, "--steps") && a + 1 < argc) steps = atol(argv[++a]);
-    else if (!strcmp(s, "--threads") && a + 1 < argc) threads = atoi(argv[++a]);
-    else if (!strcmp(s, "--file") && a + 1 < argc) file = argv[++a];
-    else if (!strcmp(s, "--json")) json = 1;
-    else if (!strcmp(s, "--help") || !strcmp(s, "-h")) {
+    dem_err pe = {0};
+    double val = 0.0;
+    if (!strcmp(s, "--particles") && a + 1 < argc) {
+      if (cli_parse_double(s, argv[++a], 1, 5e7, &val, &pe)) return cli_error("dem-bench", &pe), 2;
+      nwant = (long)val;
+    } else if (!strcmp(s, "--steps") && a + 1 < argc) {
+      if (cli_parse_double(s, argv[++a], 1, 1e9, &val, &pe)) return cli_error("dem-bench", &pe), 2;
+      steps = (long)val;
+    } else if (!strcmp(s, "--threads") && a + 1 < argc) {
+      if (cli_parse_double(s, argv[++a], 1, 64, &val, &pe)) return cli_error("dem-bench", &pe), 2;
+      threads = (int)val;
+    } else if (!strcmp(s, "--file") && a + 1 < argc) {
+      file = argv[++a];
+    } else if (!strcmp(s, "--json")) {
+      json = 1;
+    } else if (!strcmp(s, "--version")) {
+      cli_print_version("dem-bench");
+      return 0;
+    } else if (!strcmp(s, "--help") || !strcmp(s, "-h")) {
       usage(stdout);
       return 0;
     } else {
       usage(stderr);
       return 2;
     }
-  }
-  if (nwant < 1 || steps < 1 || threads < 1) {
-    fprintf(stderr, "dem-bench: --particles, --steps and --threads must be >= 1\n");
-    return 2;
   }
   size_t nfile = 0;
   sphere *src = read_csv(file, &nfile);
