@@ -13,6 +13,7 @@
 #include "dem/material.h"
 #include "dem/params.h"
 #include "dem/tangential.h"
+#include "dem/impact.h"
 
 static const double RHO = 2500.0, E_MOD = 1e8, NU = 0.3;
 
@@ -772,6 +773,113 @@ START_TEST(test_sliding_to_rolling) {
 }
 END_TEST
 
+
+/* Every law of the registry: two equal spheres colliding head-on in the engine against the
+ * one-degree-of-freedom impact solver (dem/impact.h, target "pair", velocity Verlet with the
+ * same step): restitution and maximum overlap. Parameter sets as in bench/bench_contact.c:
+ * the reference case (ammonium fluorescein, thesis Tables 4.1/4.2) and the bulk set (thesis
+ * Tables 6.2/6.3, d = 1 mm); the first one the law accepts is used. */
+typedef struct {
+  const char *key;
+  double value;
+} law_kv;
+static const law_kv afl_set[] = {
+    {"E", 1.2e9},    {"nu", 0.3},     {"gamma", 0.2},  {"py", 35.3e6},   {"kn", 1500.0},
+    {"ke", 1500.0},  {"kp", 210.0},   {"kc", 20.0},    {"kcp", 20.0},    {"f0", 2.0525e-6},
+    {"f0p", 4.0e-6}, {"ke_max", 1500.0}, {"phi_f", 0.02}, {"e", 0.9},    {NULL, 0.0}};
+static const law_kv bulk_set[] = {
+    {"E", 5e7},      {"nu", 0.3},     {"gamma", 2.0},  {"py", 5e7},      {"kn", 1e6},
+    {"ke", 1e6},     {"kp", 1e5},     {"kc", 1e4},     {"kcp", 1e4},     {"f0", 6.2832e-3},
+    {"f0p", 6.2832e-3}, {"ke_max", 1e6}, {"phi_f", 0.05}, {"e", 0.5},    {NULL, 0.0}};
+
+/* The law's own keys of a set, plus the scene keys of the impact solver. */
+static void law_params(const dem_law *law, const law_kv *set, double R, double rho,
+                       dem_params *ps) {
+  dem_params_init(ps);
+  dem_params_set(ps, "R", R, "set", NULL);
+  dem_params_set(ps, "rho", rho, "set", NULL);
+  for (const law_kv *k = set; k->key; k++)
+    if (dem_contact_law_has_coef(law, k->key) || !strcmp(k->key, "E") || !strcmp(k->key, "nu"))
+      dem_params_set(ps, k->key, k->value, "set", NULL);
+}
+
+START_TEST(test_every_law_head_on) {
+  const dem_law *law = dem_contact_law_at(_i);
+  const law_kv *sets[2] = {afl_set, bulk_set};
+  const double Rs[2] = {2.45e-6, 0.5e-3}, rhos[2] = {1350.0, 2500.0}, vs[2] = {5.0, 0.5};
+  dem_params ps;
+  dem_impact_scene sc;
+  dem_contact ct;
+  int k = 0;
+  for (; k < 2; k++) {
+    law_params(law, sets[k], Rs[k], rhos[k], &ps);
+    if (dem_contact_setup(&ct, law, &ps, NULL) == DEM_OK &&
+        dem_impact_setup(&sc, law, &ps, DEM_TARGET_PAIR, NULL) == DEM_OK)
+      break;
+  }
+  ck_assert_msg(k < 2, "law '%s' accepts neither parameter set", law->name);
+  const double R = Rs[k];
+  double v = vs[k];
+  dem_impact_opts o;
+  dem_impact_opts_default(&o);
+  dem_impact_result res;
+  dem_err err = {0};
+  /* faster until it rebounds (adhesive laws stick below their sticking velocity) */
+  for (int tries = 0; tries < 4; tries++, v *= 2.0) {
+    ck_assert_int_eq(dem_impact_run(&sc, &o, v, &res, &err), DEM_OK);
+    if (!res.stuck) break;
+  }
+  if (getenv("DEM_TEST_VERBOSE"))
+    fprintf(stderr, "%-18s set %d  e %.4f  alpha_max %.4g  stuck %d  steps %ld\n", law->name, k,
+            res.e, res.alpha_max, res.stuck, res.steps);
+  /* the engine: two spheres of radius R approaching at v */
+  dem_sim *s = dem_sim_create(&err);
+  int mat;
+  dem_sim_add_material(s, rhos[k], &mat, &err);
+  ck_assert_int_eq(dem_sim_set_interaction(s, mat, mat, &ct, NULL, NULL, &err), DEM_OK);
+  const double x1[3] = {0, 0, 0}, x2[3] = {2 * R + 0.5 * v * res.dt, 0, 0};
+  const double v1[3] = {0.5 * v, 0, 0}, v2[3] = {-0.5 * v, 0, 0};
+  dem_sim_add_particle(s, x1, v1, R, mat, &err);
+  dem_sim_add_particle(s, x2, v2, R, mat, &err);
+  dem_sim_set_dt(s, res.dt, &err);
+  dem_sim_set_skin(s, 0.2 * R, &err);
+  dem_particles *p = dem_sim_particles(s);
+  if (res.stuck) { /* sticks at every velocity tried: the engine's pair stays together too */
+    dem_breakdown bd;
+    dem_breakdown_defaults(&bd);
+    bd.max_overlap_frac = 1.0;
+    dem_sim_set_breakdown(s, &bd, &err);
+    ck_assert_int_eq(dem_sim_run(s, res.steps, &err), DEM_OK);
+    dem_sim_stats st;
+    dem_sim_get_stats(s, &st);
+    ck_assert_msg(st.contacts == 1, "law %s: impact solver sticks, the engine's pair does not",
+                  law->name);
+    dem_sim_free(s);
+    return;
+  }
+  double amax = 0.0, vout = 0.0;
+  long limit = 20 * res.steps + 1000;
+  for (long step = 0; step < limit; step++) {
+    ck_assert_int_eq(dem_sim_run(s, 1, &err), DEM_OK);
+    size_t a = find_id(p, 0), b = find_id(p, 1);
+    double al = 2 * R - (p->x[3 * b] - p->x[3 * a]);
+    amax = al > amax ? al : amax;
+    dem_sim_stats st;
+    dem_sim_get_stats(s, &st);
+    if (amax > 0 && al < 0 && st.contacts == 0) {
+      vout = p->v[3 * b] - p->v[3 * a];
+      break;
+    }
+  }
+  /* same integrator, same step: agreement to the end-of-contact detection (one step) */
+  ck_assert_msg(fabs(vout / v - res.e) < 2e-3, "law %s: e engine %g, impact %g", law->name,
+                vout / v, res.e);
+  ck_assert_msg(fabs(amax / res.alpha_max - 1.0) < 1e-3, "law %s: alpha_max engine %g, impact %g",
+                law->name, amax, res.alpha_max);
+  dem_sim_free(s);
+}
+END_TEST
+
 static Suite *suite(void) {
   Suite *s = suite_create("engine");
   TCase *tc = tcase_create("engine");
@@ -787,6 +895,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_breakdown);
   tcase_add_test(tc, test_errors);
   tcase_add_test(tc, test_oblique_friction);
+  tcase_add_loop_test(tc, test_every_law_head_on, 0, dem_contact_law_count());
   tcase_add_test(tc, test_sliding_to_rolling);
   suite_add_tcase(s, tc);
   return s;
