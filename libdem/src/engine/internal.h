@@ -59,6 +59,7 @@ typedef struct dem_tdata {
   size_t contacts, wall_contacts;
   double max_overlap;            /* largest alpha / min(r) */
   double max_disp2;              /* m^2 */
+  double ke, epot;               /* J: partial kinetic and gravitational energy (checks) */
   double pad[8];                 /* keep threads' hot counters on separate cache lines */
 } dem_tdata;
 

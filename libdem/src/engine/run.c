@@ -138,19 +138,10 @@ static double kick_drift(dem_sim *s, size_t a, size_t b) {
   return md2;
 }
 
-/* Forces in parallel, spills reduced, wall loads summed in thread order. If kick != 0 the
- * second half kick follows in the same parallel region. */
-static void compute_forces(dem_sim *s, int kick) {
+/* Step statistics and wall loads, summed in thread order (called by one thread); the wall
+ * work advances by power x dt if add_work. */
+static void collect(dem_sim *s, int add_work) {
   const int nt = s->nthreads;
-#pragma omp parallel num_threads(nt)
-  {
-    int t = thread_id();
-    dem_tdata *td = &s->td[t];
-    forces_local(s, td);
-#pragma omp barrier
-    reduce_spills(s, t);
-    if (kick) half_kick(s, td->row_begin, td->row_end);
-  }
   size_t c = 0, wc = 0, sp = 0;
   double mo = 0.0;
   for (int t = 0; t < nt; t++) {
@@ -171,7 +162,7 @@ static void compute_forces(dem_sim *s, int kick) {
       }
       pw += s->td[t].wpow[w];
     }
-    wl->work += pw * s->dt;
+    if (add_work) wl->work += pw * s->dt;
   }
   s->st.contacts = c;
   s->st.wall_contacts = wc;
@@ -179,13 +170,38 @@ static void compute_forces(dem_sim *s, int kick) {
   s->st.max_overlap_frac = mo;
 }
 
-static double potential_gravity(const dem_sim *s) {
+/* The largest overlap fraction of the last force evaluation (any thread may call it after
+ * the barrier that follows the force loop; all get the same answer). */
+static double max_overlap(const dem_sim *s) {
+  double mo = 0.0;
+  for (int t = 0; t < s->nthreads; t++) mo = s->td[t].max_overlap > mo ? s->td[t].max_overlap : mo;
+  return mo;
+}
+
+/* Forces at the current state (no kick), e.g. before the first step. */
+static void compute_forces(dem_sim *s) {
+#pragma omp parallel num_threads(s->nthreads)
+  {
+    int t = thread_id();
+    forces_local(s, &s->td[t]);
+#pragma omp barrier
+    reduce_spills(s, t);
+  }
+  collect(s, 0); /* no time elapses: no work */
+}
+
+/* Kinetic and gravitational energy of rows [a, b). */
+static void energies(const dem_sim *s, size_t a, size_t b, double *ke, double *epot) {
   const dem_particles *p = &s->p;
-  double e = 0.0;
-  for (size_t i = 0; i < p->n; i++)
-    e -= p->mass[i] * (s->g[0] * p->x[3 * i] + s->g[1] * p->x[3 * i + 1] +
-                       s->g[2] * p->x[3 * i + 2]);
-  return e;
+  double k = 0.0, e = 0.0;
+  for (size_t i = a; i < b; i++) {
+    const double *v = p->v + 3 * i, *w = p->omega + 3 * i, *x = p->x + 3 * i;
+    k += 0.5 * p->mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
+         0.5 * p->inertia[i] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    e -= p->mass[i] * (s->g[0] * x[0] + s->g[1] * x[1] + s->g[2] * x[2]);
+  }
+  *ke = k;
+  *epot = e;
 }
 
 static double wall_work(const dem_sim *s) {
@@ -201,6 +217,9 @@ static int overlap_error(dem_sim *s, dem_err *err) {
                      s->st.steps, s->st.time, s->st.max_overlap_frac, s->bd.max_overlap_frac);
 }
 
+/* Why a run stopped inside the parallel loop. */
+enum { STOP_NONE = 0, STOP_BUILD, STOP_OVERLAP, STOP_NONFINITE, STOP_UNSTABLE };
+
 int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
   int rc;
   if ((rc = check_ready(s, err))) return rc;
@@ -209,65 +228,134 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
   if (s->need_build || s->nh == 0)
     if ((rc = dem_engine_build(s, err))) return rc;
   if (s->need_forces) {
-    compute_forces(s, 0);
-    s->need_forces = 0; /* forces at the current state for the first half kick */
+    compute_forces(s);
+    s->need_forces = 0;
     if (s->st.max_overlap_frac > s->bd.max_overlap_frac) return overlap_error(s, err);
   }
   const int nt = s->nthreads;
   const double half_skin2 = 0.25 * s->skin * s->skin;
-  double ke_prev = dem_sim_kinetic_energy(s);
-  double epot_prev = potential_gravity(s), work_prev = wall_work(s);
-  int strikes = 0;
-  for (long step = 0; step < nsteps; step++) {
-    double md2 = 0.0;
-#pragma omp parallel num_threads(nt) reduction(max : md2)
+  const long step0 = s->st.steps;
+  int stop = STOP_NONE, build_rc = DEM_OK, strikes = 0;
+  long done = 0;
+  double ke_last = 0.0;
+  /* One parallel region for the whole run: per step, a barrier after the drift (forces read
+   * every position), one after the force loop (spills), and on check steps one after the
+   * kick; neighbour-list builds run on one thread. Decisions that every thread must share
+   * (rebuild, stop) are computed by each thread from the same data after a barrier, so
+   * they agree without further synchronisation. */
+#pragma omp parallel num_threads(nt)
+  {
+    const int t = thread_id();
+    double ke_prev = 0.0, epot_prev = 0.0, work_prev = 0.0;
+    int my_strikes = 0;
     {
-      const dem_tdata *td = &s->td[thread_id()];
-      md2 = kick_drift(s, td->row_begin, td->row_end);
+      double k, e;
+      energies(s, s->td[t].row_begin, s->td[t].row_end, &k, &e);
+      s->td[t].ke = k;
+      s->td[t].epot = e;
     }
-    for (int w = 0; w < s->nwall; w++)
-      for (int k = 0; k < 3; k++) s->wall[w].spec.p[k] += s->dt * s->wall[w].spec.v[k];
-    if (md2 > half_skin2 || !(md2 == md2) || dem_engine_walls_moved(s)) {
-      if ((rc = dem_engine_build(s, err))) {
-        s->st.loop_seconds += now_s() - t0;
-        return rc;
-      }
+#pragma omp barrier
+    for (int u = 0; u < nt; u++) {
+      ke_prev += s->td[u].ke;
+      epot_prev += s->td[u].epot;
     }
-    compute_forces(s, 1);
-    s->st.steps++;
-    s->st.time += s->dt;
-    if (s->st.max_overlap_frac > s->bd.max_overlap_frac) {
-      s->st.loop_seconds += now_s() - t0;
-      return overlap_error(s, err);
-    }
-    if (s->st.steps % s->bd.check_interval == 0) {
-      double ke = dem_sim_kinetic_energy(s);
-      if (!isfinite(ke)) {
-        s->st.loop_seconds += now_s() - t0;
-        return dem_err_set(err, DEM_ENONFINITE,
-                           "step %ld (t = %g s): non-finite velocity or position", s->st.steps,
-                           s->st.time);
+    work_prev = wall_work(s);
+#pragma omp barrier
+    for (long step = 0; step < nsteps; step++) {
+      dem_tdata *td = &s->td[t];
+      td->max_disp2 = kick_drift(s, td->row_begin, td->row_end);
+      if (t == 0)
+        for (int w = 0; w < s->nwall; w++)
+          for (int k = 0; k < 3; k++) s->wall[w].spec.p[k] += s->dt * s->wall[w].spec.v[k];
+#pragma omp barrier
+      double md2 = 0.0;
+      for (int u = 0; u < nt; u++) md2 = s->td[u].max_disp2 > md2 || !(s->td[u].max_disp2 == s->td[u].max_disp2) ? s->td[u].max_disp2 : md2;
+      if (md2 > half_skin2 || !(md2 == md2) || dem_engine_walls_moved(s)) {
+#pragma omp single
+        {
+          build_rc = dem_engine_build(s, err);
+          if (build_rc) stop = STOP_BUILD;
+        }
+        if (stop) break;
       }
-      double epot = potential_gravity(s), work = wall_work(s);
-      double w_in = (epot_prev - epot) + (work - work_prev);
-      double gain = ke - ke_prev - w_in;
-      if (ke > s->bd.ke_floor && gain > s->bd.ke_growth * ke_prev) strikes++;
-      else strikes = 0;
-      if (strikes >= s->bd.ke_strikes) {
-        s->st.loop_seconds += now_s() - t0;
-        return dem_err_set(err, DEM_EUNSTABLE,
-                           "step %ld (t = %g s): kinetic energy grew by more than %g of itself "
-                           "without work input in %d consecutive intervals of %d steps "
-                           "(now %.3g J); the time step is too large",
-                           s->st.steps, s->st.time, s->bd.ke_growth, strikes,
-                           s->bd.check_interval, ke);
+      td = &s->td[t]; /* the partition may have changed */
+      forces_local(s, td);
+#pragma omp barrier
+      reduce_spills(s, t);
+      half_kick(s, td->row_begin, td->row_end);
+      const long stepno = step0 + step + 1;
+      if (max_overlap(s) > s->bd.max_overlap_frac) {
+        if (t == 0) {
+          stop = STOP_OVERLAP;
+          done = step + 1;
+        }
+        break;
       }
-      ke_prev = ke;
-      epot_prev = epot;
-      work_prev = work;
+      if (stepno % s->bd.check_interval == 0) {
+        double k, e;
+        energies(s, td->row_begin, td->row_end, &k, &e);
+        td->ke = k;
+        td->epot = e;
+        if (t == 0) collect(s, 1); /* wall work up to date for the check */
+#pragma omp barrier
+        double ke = 0.0, epot = 0.0;
+        for (int u = 0; u < nt; u++) {
+          ke += s->td[u].ke;
+          epot += s->td[u].epot;
+        }
+        double work = wall_work(s);
+        if (!isfinite(ke)) {
+          if (t == 0) {
+            stop = STOP_NONFINITE;
+            done = step + 1;
+          }
+          break;
+        }
+        double gain = ke - ke_prev - ((epot_prev - epot) + (work - work_prev));
+        if (ke > s->bd.ke_floor && gain > s->bd.ke_growth * ke_prev) my_strikes++;
+        else my_strikes = 0;
+        if (my_strikes >= s->bd.ke_strikes) {
+          if (t == 0) {
+            stop = STOP_UNSTABLE;
+            done = step + 1;
+            strikes = my_strikes;
+            ke_last = ke;
+          }
+          break;
+        }
+        ke_prev = ke;
+        epot_prev = epot;
+        work_prev = work;
+#pragma omp barrier /* nobody overwrites td->ke/epot or the wall loads before all read them */
+      } else if (t == 0) {
+        collect(s, 1);
+      }
+      if (t == 0) done = step + 1;
     }
   }
-  s->st.kinetic_energy = dem_sim_kinetic_energy(s);
+  if (stop == STOP_OVERLAP) collect(s, 1); /* that step's loads were not collected */
+  s->st.steps += done;
+  s->st.time += (double)done * s->dt;
   s->st.loop_seconds += now_s() - t0;
+  switch (stop) {
+  case STOP_BUILD:
+    return build_rc;
+  case STOP_OVERLAP:
+    return overlap_error(s, err);
+  case STOP_NONFINITE:
+    return dem_err_set(err, DEM_ENONFINITE,
+                       "step %ld (t = %g s): non-finite velocity or position", s->st.steps,
+                       s->st.time);
+  case STOP_UNSTABLE:
+    return dem_err_set(err, DEM_EUNSTABLE,
+                       "step %ld (t = %g s): kinetic energy grew by more than %g of itself "
+                       "without work input in %d consecutive intervals of %d steps "
+                       "(now %.3g J); the time step is too large",
+                       s->st.steps, s->st.time, s->bd.ke_growth, strikes, s->bd.check_interval,
+                       ke_last);
+  default:
+    break;
+  }
+  s->st.kinetic_energy = dem_sim_kinetic_energy(s);
   return DEM_OK;
 }
