@@ -104,6 +104,9 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
     const int mati = mat[i];
     double fi[3] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
     double ti[3] = {tq[3 * i], tq[3 * i + 1], tq[3 * i + 2]};
+    /* the row's own velocities, kept in registers across the law calls */
+    const double vi[3] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+    const double wi[3] = {w[3 * i], w[3 * i + 1], w[3 * i + 2]};
     /* Pass 1 (branch-free): the pairs that need the law (overlapping, or a live state
      * word of an adhesive/plastic law) go to cand[0..m); pairs apart whose spring may
      * still be loaded (touch[q]) go to the tail and are reset. Pairs apart that were
@@ -145,7 +148,7 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       /* R* = 1/(1/r_i + 1/r_j), m* = 1/(1/m_i + 1/m_j) with one division */
       const double sr = ir + invr[j], sm = im + invm[j], d = 1.0 / (sr * sm);
       dem_geom g = {sm * d, sr * d};
-      const double *vi = v + 3 * i, *vj = v + 3 * j, *wi = w + 3 * i, *wj = w + 3 * j;
+      const double *vj = v + 3 * j, *wj = w + 3 * j;
       const double vr[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
       const double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
       const unsigned fl = in->fl;
