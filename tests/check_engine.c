@@ -880,6 +880,63 @@ START_TEST(test_every_law_head_on) {
 }
 END_TEST
 
+
+/* Servo piston: a column cut from the settled bed (8 x 8 mm, spheres clear of the new side
+ * walls; Hertz-Mindlin, mu = 0.3 — without friction the column keeps compacting), a plane
+ * piston from above (gain 0.05 m/(s N), v_max 0.05 m/s) driven to a target force of
+ * 10 kPa x area; the force on
+ * the piston, averaged over the last 2000 steps, is within 2% of the target, and no single
+ * step is off by more than 10%. */
+START_TEST(test_servo) {
+  int mat;
+  dem_sim *s = make_sim_friction(0.5, 0.3, 0.0, &mat);
+  dem_err err = {0};
+  const double L = 8e-3;
+  FILE *fp = fopen(DEM_SOURCE_DIR "/../shared/bench/dense20k.csv", "r");
+  ck_assert_ptr_nonnull(fp);
+  char line[256];
+  double ztop = 0.0;
+  while (fgets(line, sizeof line, fp)) {
+    double x[4];
+    if (sscanf(line, "%lf,%lf,%lf,%lf", &x[0], &x[1], &x[2], &x[3]) != 4) continue;
+    if (x[0] + x[3] > L || x[1] + x[3] > L || x[2] > 8e-3) continue;
+    ck_assert_int_eq(dem_sim_add_particle(s, x, NULL, x[3], mat, &err), DEM_OK);
+    if (x[2] + x[3] > ztop) ztop = x[2] + x[3];
+  }
+  fclose(fp);
+  for (int w = 0; w < 5; w++) {
+    dem_wall_spec ws = {DEM_WALL_PLANE, {0, 0, 0}, {0, 0, 0}, 0, {0, 0, 0}, mat};
+    ws.n[w / 2] = w % 2 ? -1.0 : 1.0;
+    if (w % 2) ws.p[w / 2] = L;
+    ck_assert_int_eq(dem_sim_add_wall(s, &ws, NULL, &err), DEM_OK);
+  }
+  int piston;
+  dem_wall_spec pw = {DEM_WALL_PLANE, {0, 0, ztop + 5e-5}, {0, 0, -1}, 0, {0, 0, 0}, mat};
+  ck_assert_int_eq(dem_sim_add_wall(s, &pw, &piston, &err), DEM_OK);
+  const double target = 1e4 * L * L; /* N */
+  ck_assert_int_eq(dem_sim_set_wall_servo(s, piston, target, 0.05, 0.05, &err), DEM_OK);
+  dem_sim_set_gravity(s, (double[3]){0, 0, -9.81});
+  dem_sim_set_dt(s, 1.5e-6, &err);
+  dem_sim_set_skin(s, 1e-4, &err);
+  ck_assert_int_eq(dem_sim_run(s, 24000, &err), DEM_OK); /* 36 ms: approach, compaction */
+  double sum = 0.0, worst = 0.0;
+  for (int k = 0; k < 2000; k++) {
+    ck_assert_int_eq(dem_sim_run(s, 1, &err), DEM_OK);
+    double f[3];
+    dem_sim_wall_load(s, piston, f, NULL, NULL);
+    sum += f[2];
+    double dev = fabs(f[2] / target - 1.0);
+    worst = dev > worst ? dev : worst;
+  }
+  if (getenv("DEM_TEST_VERBOSE"))
+    fprintf(stderr, "servo: n = %zu, mean %g N, target %g N, worst step %g\n",
+            dem_sim_particles(s)->n, sum / 2000, target, worst);
+  ck_assert_double_eq_tol(sum / 2000, target, 0.02 * target);
+  ck_assert(worst < 0.1);
+  dem_sim_free(s);
+}
+END_TEST
+
 static Suite *suite(void) {
   Suite *s = suite_create("engine");
   TCase *tc = tcase_create("engine");
@@ -893,6 +950,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_walls);
   tcase_add_test(tc, test_threads_reproducible);
   tcase_add_test(tc, test_breakdown);
+  tcase_add_test(tc, test_servo);
   tcase_add_test(tc, test_errors);
   tcase_add_test(tc, test_oblique_friction);
   tcase_add_loop_test(tc, test_every_law_head_on, 0, dem_contact_law_count());

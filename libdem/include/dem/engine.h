@@ -132,6 +132,13 @@ void dem_breakdown_defaults(dem_breakdown *b);
 int dem_sim_add_wall(dem_sim *s, const dem_wall_spec *w, int *index, dem_err *err);
 /* Change a wall's velocity (m/s); its position advances by v dt each step. */
 int dem_sim_set_wall_velocity(dem_sim *s, int wall, const double v[3], dem_err *err);
+/* Servo: from the next step on, the wall moves along its normal n (towards the particles
+ * for a positive speed) at v = clamp(gain (f_target - f_c), -v_max, v_max), where
+ * f_c = -(load on the wall) . n is the compressive force the particles exert on it (N),
+ * updated after every force evaluation. f_target in N (a stress times the wall's area),
+ * gain in m/(s N), v_max in m/s. dem_sim_set_wall_velocity switches the servo off. */
+int dem_sim_set_wall_servo(dem_sim *s, int wall, double f_target, double gain, double v_max,
+                           dem_err *err);
 /* The wall as it is now (position after the steps taken). */
 int dem_sim_wall(const dem_sim *s, int wall, dem_wall_spec *out);
 /* Force (N) and torque about the wall point p (N m) that the particles exert on the wall in

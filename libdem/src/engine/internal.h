@@ -27,6 +27,8 @@ typedef struct dem_wall {
   uint32_t *list;           /* particles within reach at the last build, ascending */
   size_t nlist, cap_list;
   double p_build[3];        /* m, the wall point at the last build */
+  int servo;                /* 1: velocity from the servo law below */
+  double f_target, gain, v_max; /* N, m/(s N), m/s */
 } dem_wall;
 
 /* Half Verlet list in CSR form: the neighbours j > i of particle i are
@@ -120,6 +122,8 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1);
  * history with the wall is active). Valid while particles move < skin/2 and the wall moves
  * < skin/2 since the build. */
 int dem_engine_wall_lists(dem_sim *s, dem_err *err);
+/* Servo walls: set their velocity from their last load (after every force evaluation). */
+void dem_engine_servo(dem_sim *s);
 /* 1 if some wall moved more than skin/2 since the last build */
 int dem_engine_walls_moved(const dem_sim *s);
 

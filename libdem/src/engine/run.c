@@ -168,6 +168,7 @@ static void collect(dem_sim *s, int add_work) {
   s->st.wall_contacts = wc;
   s->st.spills = sp;
   s->st.max_overlap_frac = mo;
+  dem_engine_servo(s);
 }
 
 /* The largest overlap fraction of the last force evaluation (any thread may call it after

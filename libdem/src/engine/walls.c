@@ -66,7 +66,38 @@ int dem_sim_set_wall_velocity(dem_sim *s, int wall, const double v[3], dem_err *
   for (int k = 0; k < 3; k++)
     if (!isfinite(v[k])) return dem_err_set(err, DEM_ENONFINITE, "wall %d: velocity", wall);
   for (int k = 0; k < 3; k++) s->wall[wall].spec.v[k] = v[k];
+  s->wall[wall].servo = 0;
   return DEM_OK;
+}
+
+int dem_sim_set_wall_servo(dem_sim *s, int wall, double f_target, double gain, double v_max,
+                           dem_err *err) {
+  if (wall < 0 || wall >= s->nwall)
+    return dem_err_set(err, DEM_ERANGE, "wall %d outside [0, %d)", wall, s->nwall);
+  if (!isfinite(f_target) || !(gain > 0.0 && isfinite(gain)) || !(v_max > 0.0 && isfinite(v_max)))
+    return dem_err_set(err, DEM_ERANGE,
+                       "wall %d servo: f_target = %g N (finite), gain = %g m/(s N) (> 0), "
+                       "v_max = %g m/s (> 0)",
+                       wall, f_target, gain, v_max);
+  dem_wall *wl = &s->wall[wall];
+  wl->servo = 1;
+  wl->f_target = f_target;
+  wl->gain = gain;
+  wl->v_max = v_max;
+  dem_engine_servo(s);
+  return DEM_OK;
+}
+
+void dem_engine_servo(dem_sim *s) {
+  for (int w = 0; w < s->nwall; w++) {
+    dem_wall *wl = &s->wall[w];
+    if (!wl->servo) continue;
+    const double *n = wl->spec.n;
+    const double fc = -(wl->f[0] * n[0] + wl->f[1] * n[1] + wl->f[2] * n[2]);
+    double sp = wl->gain * (wl->f_target - fc);
+    sp = sp > wl->v_max ? wl->v_max : (sp < -wl->v_max ? -wl->v_max : sp);
+    for (int k = 0; k < 3; k++) wl->spec.v[k] = sp * n[k];
+  }
 }
 
 int dem_sim_wall(const dem_sim *s, int wall, dem_wall_spec *out) {
