@@ -143,6 +143,7 @@ struct cal_problem {
   int maxeval_total;
   double t0;               /* wall clock at start, s */
   volatile sig_atomic_t *stop; /* set by a signal handler */
+  long stop_after;         /* > 0: behave as if interrupted after this many evaluations */
   cal_progress_fn progress;
   void *progress_user;
   double *tr;              /* in-memory trace: rows of (stage, S, best S, x_0..x_{p-1}) */
@@ -226,6 +227,7 @@ typedef struct cal_run_opts {
   int json;
   int quiet;          /* no progress line */
   int plots;          /* 1: write PNG plots (needs gnuplot) */
+  long stop_after;    /* testing: stop as if interrupted after this many evaluations */
 } cal_run_opts;
 
 /* Run a loaded calibration end to end; fills res and st. Returns DEM_EINTERRUPTED if a

@@ -37,6 +37,7 @@ static void usage(FILE *f) {
           "                   (each with relative_error), mean_relative_error\n"
           "  --quiet          no progress line\n"
           "  --no-plots       skip the gnuplot PNGs\n"
+          "  --stop-after N   (testing) stop after N evaluations as if interrupted\n"
           "  --builtin NAME   run calibrate/builtin/NAME.cfg; --list-builtins lists them\n\n"
           "Exit status: 0 ok, 1 bad input or failed run, 2 usage, 130 interrupted.\n"
           "Documentation: docs/calibration.md.\n");
@@ -81,7 +82,7 @@ static int list_builtins(void) {
 
 int main(int argc, char **argv) {
   const char *config = NULL, *builtin = NULL;
-  cal_run_opts o = {NULL, 0, 0, 0, 1};
+  cal_run_opts o = {NULL, 0, 0, 0, 1, 0};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -102,6 +103,8 @@ int main(int argc, char **argv) {
       o.json = 1;
     } else if (!strcmp(a, "--quiet")) {
       o.quiet = 1;
+    } else if (!strcmp(a, "--stop-after") && i + 1 < argc) {
+      o.stop_after = atol(argv[++i]); /* testing the interrupt/resume path */
     } else if (!strcmp(a, "--no-plots")) {
       o.plots = 0;
     } else if (a[0] == '-') {

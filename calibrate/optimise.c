@@ -21,6 +21,7 @@ static double fobj(unsigned n, const double *u, double *grad, void *data) {
   (void)n;
   (void)grad; /* derivative-free algorithms only */
   wrap *w = data;
+  if (w->p->stop_after > 0 && w->p->nevals >= w->p->stop_after && w->p->stop) *w->p->stop = 1;
   if (w->p->stop && *w->p->stop) {
     nlopt_force_stop(w->opt);
     return w->p->cfg->opt.penalty;

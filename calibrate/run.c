@@ -63,7 +63,9 @@ int cal_run(cal_config *c, const cal_run_opts *o, cal_result *res, cal_stats *st
   fputc('\n', p.trace);
   snprintf(path, sizeof path, "%s/failures.log", outdir);
   p.failures = fopen(path, "w");
+  stop_requested = 0;
   p.stop = &stop_requested;
+  p.stop_after = o->stop_after;
   p.maxeval_total = c->opt.multistart ? c->opt.multistart * c->opt.maxeval_local
                                       : c->opt.maxeval_global + c->opt.maxeval_local;
   p.t0 = cal_now();
