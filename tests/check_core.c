@@ -89,6 +89,13 @@ START_TEST(test_eta_hertz) {
     ck_assert(dem_damping_eta_hertz(e, 1) > eta);
   }
   ck_assert(dem_damping_eta_hertz(-0.1, 0) < 0);
+  /* The closed form (unclipped) against the integrated dimensionless impact. */
+  for (double e = 0.1; e < 0.95; e += 0.2) {
+    double eta = dem_damping_eta_hertz(e, 0);
+    ck_assert_double_eq_tol(dem_damping_restitution_hertz(eta, 0), e, 1e-9);
+    ck_assert_double_eq_tol(dem_damping_restitution_hertz(dem_damping_eta_hertz(e, 1), 1), e,
+                            1e-9);
+  }
 }
 END_TEST
 

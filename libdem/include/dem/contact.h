@@ -135,6 +135,11 @@ double dem_damping_eta_linear(double e);
  * clipped != 0: the total force is clipped at zero (no tensile force from damping at the
  * end of contact). Returns a negative number if e is outside (0, 1]. */
 double dem_damping_eta_hertz(double e, int clipped);
+/* The inverse: the restitution of a Hertz impact damped by f_d = eta sqrt(m* S_n) alpha_dot
+ * (independent of impact velocity), found by integrating the dimensionless impact; used to
+ * check other damping constants, e.g. the EDEM/LIGGGHTS 2 sqrt(5/6) |ln e|/sqrt(ln^2 e + pi^2)
+ * (docs/contact-laws.md, "Damping"). eta >= 0; returns a negative number on failure. */
+double dem_damping_restitution_hertz(double eta, int clipped);
 
 /* Fill out for "no contact". */
 static inline void dem_normal_zero(dem_normal *out) {

@@ -8,9 +8,11 @@
  * with x = X xi, t = T tau, X and T chosen so that m X / T^2 = K X^{3/2} (K = 4/3 E* sqrt R*)
  * and X / T = v_i, the impact becomes
  *     xi'' = -xi^{3/2} - c xi^{1/4} xi',   xi(0) = 0, xi'(0) = 1,   c = eta sqrt(3/2),
- * which contains no velocity: e depends on eta alone. There is no closed form for e(eta), so
- * eta is found by root finding on this dimensionless impact, integrated with GSL's adaptive
- * Runge-Kutta-Prince-Dormand (8,9) at a relative tolerance of 1e-12.
+ * which contains no velocity: e depends on eta alone. Kept to the end at zero overlap
+ * (tensile end force kept) it has a closed form (see dem_damping_eta_hertz); with the
+ * tensile force clipped it has none, and eta is found by root finding on this dimensionless
+ * impact, integrated with GSL's adaptive Runge-Kutta-Prince-Dormand (8,9) at a relative
+ * tolerance of 1e-12.
  */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -131,6 +133,15 @@ done:
   return result;
 }
 
+double dem_damping_restitution_hertz(double eta, int clipped) {
+  if (!(eta >= 0.0) || !isfinite(eta)) return -1.0;
+  if (eta == 0.0) return 1.0;
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  double e = hz_restitution(eta, clipped);
+  gsl_set_error_handler(old);
+  return e;
+}
+
 typedef struct {
   double e;
   int clipped;
@@ -144,6 +155,12 @@ static double eta_fn(double eta, void *params) {
 double dem_damping_eta_hertz(double e, int clipped) {
   if (!(e > 0.0 && e <= 1.0)) return -1.0;
   if (e == 1.0) return 0.0;
+  /* Unclipped: exact closed form. With z = alpha^{5/4} and a rescaled time the damped Hertz
+   * impact becomes a linear damped oscillator, so eta = sqrt(5/6) eta_linear(e) — the
+   * constant of EDEM/LIGGGHTS (2 sqrt(5/6) |ln e| / sqrt(ln^2 e + pi^2)). The root finding
+   * below agrees with it to 1e-11 (tests/check_core.c); it is still needed when the tensile
+   * end force is clipped, where no closed form exists. */
+  if (!clipped) return sqrt(5.0 / 6.0) * dem_damping_eta_linear(e);
   /* One-entry cache per thread: the calibration loop sets laws up with the same e. */
   static _Thread_local double cache_e = -1.0, cache_eta = -1.0;
   static _Thread_local int cache_clipped = -1;
