@@ -66,6 +66,46 @@ static void row_cb(double alpha, const dem_normal *nm, void *user) {
 }
 #endif
 
+#ifdef CAL_HAVE_CONTACT_PATH
+/* The law of c with the parameters ps (+ the target's overrides) along a path. */
+static int law_path(const cal_config *c, const cal_target *t, const dem_params *ps,
+                    const double *turn, int nt, rows *r, dem_err *err) {
+  dem_params tp;
+  int rc = target_params(t, ps, &tp, err);
+  if (rc) return rc;
+  double R = dem_params_get_or(&tp, "R", NAN), rho = dem_params_get_or(&tp, "rho", 1000.0);
+  if (!(R > 0.0))
+    return dem_err_set(err, DEM_EMISSING,
+                       "target '%s': a force-overlap path needs the particle radius R (fixed "
+                       "or set)",
+                       t->name);
+  dem_contact ct;
+  if ((rc = dem_contact_setup(&ct, c->law, &tp, err))) return rc;
+  double m = dem_sphere_mass(R, rho);
+  dem_geom g = {t->pair ? R / 2 : R, t->pair ? m / 2 : m};
+  double lo = 0.0, hi = 0.0;
+  for (int k = 0; k < nt; k++) {
+    if (turn[k] < lo) lo = turn[k];
+    if (turn[k] > hi) hi = turn[k];
+  }
+  double step = (hi - lo) / c->path_steps;
+  rc = dem_contact_path(&ct, &g, turn, nt, step > 0 ? step : 1e-12, row_cb, r, err);
+  if (!rc && r->oom) rc = dem_err_set(err, DEM_ENOMEM, "out of memory");
+  if (!rc && r->n < 2)
+    rc = dem_err_set(err, DEM_EINVAL, "target '%s': the overlap path gave %d rows", t->name, r->n);
+  for (int k = 0; !rc && k < r->n; k++)
+    if (!isfinite(r->f[k]))
+      rc = dem_err_set(err, DEM_ENONFINITE, "target '%s': non-finite force at alpha = %g m",
+                       t->name, r->a[k]);
+  if (rc) {
+    free(r->a);
+    free(r->f);
+    memset(r, 0, sizeof *r);
+  }
+  return rc;
+}
+#endif
+
 /* Drive the law along the reference path of t; rows of (alpha, f). *shift: the number of
  * model branches that precede the reference's first branch (1 if the path had to be started
  * at alpha = 0 moving the other way). */
@@ -81,18 +121,6 @@ static int curve_rows(const cal_config *c, const cal_target *t, const dem_params
                      "curve targets need dem_contact_path (dem/impact.h, `impact` branch), not "
                      "merged yet");
 #else
-  dem_params tp;
-  int rc = target_params(t, ps, &tp, err);
-  if (rc) return rc;
-  double R = dem_params_get_or(&tp, "R", NAN), rho = dem_params_get_or(&tp, "rho", 1000.0);
-  if (!(R > 0.0))
-    return dem_err_set(err, DEM_EMISSING,
-                       "target '%s': a curve needs the particle radius R (fixed or set)",
-                       t->name);
-  dem_contact ct;
-  if ((rc = dem_contact_setup(&ct, c->law, &tp, err))) return rc;
-  double m = dem_sphere_mass(R, rho);
-  dem_geom g = {t->pair ? R / 2 : R, t->pair ? m / 2 : m};
   /* Turning points: 0, every local extremum of the reference sequence, its last point. */
   double *tp_a = malloc(sizeof(double) * (size_t)(t->n + 2));
   if (!tp_a) return dem_err_set(err, DEM_ENOMEM, "out of memory");
@@ -102,7 +130,6 @@ static int curve_rows(const cal_config *c, const cal_target *t, const dem_params
     tp_a[nt++] = t->x[0];
     if (cal_first_direction(t->x, t->n) * (t->x[0] > 0 ? 1 : -1) < 0) *shift = 1;
   }
-  double lo = 0.0, hi = 0.0;
   int dir = 0;
   for (int k = 1; k < t->n; k++) {
     double d = t->x[k] - t->x[k - 1];
@@ -111,25 +138,8 @@ static int curve_rows(const cal_config *c, const cal_target *t, const dem_params
     if (s != 0) dir = s;
   }
   if (tp_a[nt - 1] != t->x[t->n - 1]) tp_a[nt++] = t->x[t->n - 1];
-  for (int k = 0; k < nt; k++) {
-    if (tp_a[k] < lo) lo = tp_a[k];
-    if (tp_a[k] > hi) hi = tp_a[k];
-  }
-  double step = (hi - lo) / c->path_steps;
-  rc = dem_contact_path(&ct, &g, tp_a, nt, step, row_cb, r, err);
+  int rc = law_path(c, t, ps, tp_a, nt, r, err);
   free(tp_a);
-  if (!rc && r->oom) rc = dem_err_set(err, DEM_ENOMEM, "out of memory");
-  if (!rc && r->n < 2)
-    rc = dem_err_set(err, DEM_EINVAL, "target '%s': the overlap path gave %d rows", t->name, r->n);
-  for (int k = 0; !rc && k < r->n; k++)
-    if (!isfinite(r->f[k]))
-      rc = dem_err_set(err, DEM_ENONFINITE, "target '%s': non-finite force at alpha = %g m",
-                       t->name, r->a[k]);
-  if (rc) {
-    free(r->a);
-    free(r->f);
-    memset(r, 0, sizeof *r);
-  }
   return rc;
 #endif
 }
@@ -177,6 +187,34 @@ static int eval_curve(const cal_config *c, const cal_target *t, const dem_params
   return rc;
 }
 
+/* One row of an unloading target: 0 -> alpha_max -> -alpha_max; f_max, alpha_p, pull-off. */
+static int eval_unloading_row(const cal_config *c, const cal_target *t, const dem_params *ps,
+                              int k, double *model, dem_err *err) {
+#ifndef CAL_HAVE_CONTACT_PATH
+  (void)c;
+  (void)t;
+  (void)ps;
+  (void)k;
+  (void)model;
+  return dem_err_set(err, DEM_EUNSUPPORTED,
+                     "unloading targets need dem_contact_path (dem/impact.h, `impact` branch), "
+                     "not merged yet");
+#else
+  double turn[3] = {0.0, t->x[k], -t->x[k]};
+  rows r;
+  memset(&r, 0, sizeof r);
+  int rc = law_path(c, t, ps, turn, 3, &r, err);
+  if (rc) return rc;
+  double s[3];
+  int has[3];
+  cal_curve_summary(r.a, r.f, r.n, s, has);
+  for (int q = 0; q < 3; q++) model[q] = has[q] ? s[q] : 0.0; /* a missing feature is zero */
+  free(r.a);
+  free(r.f);
+  return DEM_OK;
+#endif
+}
+
 static int eval_impact_point(const cal_config *c, const cal_target *t, const dem_params *ps,
                              int k, double *model, dem_err *err) {
 #ifndef CAL_HAVE_IMPACT
@@ -215,7 +253,8 @@ int cal_model_eval(const cal_config *c, const dem_params *ps, double *model, dem
   /* The job list: (target, point); point -1 = a whole curve. */
   int njobs = 0;
   for (int i = 0; i < c->ntargets; i++)
-    njobs += c->t[i].type == CAL_T_CURVE ? 1 : c->t[i].nres;
+    njobs += c->t[i].type == CAL_T_CURVE ? 1
+             : (c->t[i].type == CAL_T_UNLOADING ? c->t[i].n : c->t[i].nres);
   int *jt = malloc(sizeof(int) * (size_t)njobs), *jp = malloc(sizeof(int) * (size_t)njobs);
   int *jrc = calloc((size_t)njobs, sizeof(int));
   dem_err *jerr = calloc((size_t)njobs, sizeof(dem_err));
@@ -230,7 +269,7 @@ int cal_model_eval(const cal_config *c, const dem_params *ps, double *model, dem
       jt[j] = i;
       jp[j++] = -1;
     } else
-      for (int k = 0; k < c->t[i].nres; k++) {
+      for (int k = 0; k < (c->t[i].type == CAL_T_UNLOADING ? c->t[i].n : c->t[i].nres); k++) {
         jt[j] = i;
         jp[j++] = k;
       }
@@ -240,6 +279,8 @@ int cal_model_eval(const cal_config *c, const dem_params *ps, double *model, dem
     const cal_target *t = &c->t[jt[q]];
     if (jp[q] < 0)
       jrc[q] = eval_curve(c, t, ps, model + t->off, &jerr[q]);
+    else if (t->type == CAL_T_UNLOADING)
+      jrc[q] = eval_unloading_row(c, t, ps, jp[q], model + t->off + 3 * jp[q], &jerr[q]);
     else
       jrc[q] = eval_impact_point(c, t, ps, jp[q], model + t->off + jp[q], &jerr[q]);
   }

@@ -78,7 +78,13 @@ double cal_mean_relative_error(const cal_problem *p) {
   return s / p->nres;
 }
 
+static const char *type_name(const cal_target *t) {
+  static const char *const n[] = {"curve", "sticking", "restitution", "unloading"};
+  return n[t->type];
+}
+
 static const char *xname(const cal_target *t) {
+  if (t->type == CAL_T_UNLOADING) return "alpha_max_m";
   if (t->type == CAL_T_STICKING) return "R_m";
   if (t->type == CAL_T_RESTITUTION) return "v_impact_m/s";
   return t->mode == CAL_CURVE_SUMMARY ? "quantity(0=f_max_N,1=alpha_p_m,2=f_pulloff_N)"
@@ -86,6 +92,7 @@ static const char *xname(const cal_target *t) {
 }
 
 static const char *yname(const cal_target *t) {
+  if (t->type == CAL_T_UNLOADING) return "f_max_N|alpha_p_m|f_pulloff_N";
   if (t->type == CAL_T_STICKING) return "v_stick_m/s";
   if (t->type == CAL_T_RESTITUTION) return "e";
   return t->mode == CAL_CURVE_SUMMARY ? "value" : "f_N";
@@ -179,7 +186,7 @@ static int write_summary(cal_problem *p, const cal_result *r, const cal_stats *s
       if (e > mx) mx = e;
     }
     fprintf(f, "  target %-20s %-11s weight %-6g points %-5d mean |rel err| %.4g  max %.4g\n",
-            t->name, t->type == CAL_T_CURVE ? "curve" : (t->type == CAL_T_STICKING ? "sticking" : "restitution"),
+            t->name, type_name(t),
             t->weight, t->nres, s / t->nres, mx);
     if (t->type != CAL_T_CURVE || t->mode == CAL_CURVE_SUMMARY)
       for (int k = 0; k < t->nres; k++)

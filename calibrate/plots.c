@@ -65,6 +65,26 @@ static int curve_plot(cal_problem *p, const cal_target *t, const dem_params *ps,
 static int point_plot(cal_problem *p, const cal_target *t, const char *dir, dem_err *err) {
   char dat[CAL_PATH_LEN], png[CAL_NAME_LEN + 24], script[4096];
   int stick = t->type == CAL_T_STICKING;
+  if (t->type == CAL_T_UNLOADING) {
+    snprintf(dat, sizeof dat, "%s/plot_%s.dat", dir, t->name);
+    FILE *o = fopen(dat, "w");
+    if (!o) return dem_err_set(err, DEM_EIO, "cannot write '%s'", dat);
+    fprintf(o, "# alpha_max_m quantity(0 f_max, 1 alpha_p, 2 f_pulloff) reference model\n");
+    for (int k = 0; k < t->nres; k++)
+      fprintf(o, "%.10g %d %.10g %.10g\n", t->xr[k], k % 3, t->yr[k], p->model[t->off + k]);
+    fclose(o);
+    snprintf(png, sizeof png, "unloading_%s.png", t->name);
+    snprintf(script, sizeof script,
+             "set title '%s: load-unload summary points, law %s (model / reference)'\n"
+             "set xlabel 'alpha_max (nm)'\nset ylabel 'model / reference'\nset grid\n"
+             "set yrange [0:*]\n"
+             "plot '%s' using ($1*1e9):($2==0?$4/$3:1/0) with linespoints pt 7 ps 1.5 title 'f_max', "
+             "'' using ($1*1e9):($2==1?$4/$3:1/0) with linespoints pt 5 ps 1.5 title 'alpha_p', "
+             "'' using ($1*1e9):($2==2?$4/$3:1/0) with linespoints pt 9 ps 1.5 title 'pull-off', "
+             "1 with lines lc rgb 'black' notitle\n",
+             p->cfg->name, p->cfg->law->name, dat);
+    return gnuplot(dir, png, script, err);
+  }
   snprintf(dat, sizeof dat, "%s/plot_%s.dat", dir, t->name);
   FILE *o = fopen(dat, "w");
   if (!o) return dem_err_set(err, DEM_EIO, "cannot write '%s'", dat);

@@ -9,7 +9,9 @@
  * physical units is the delta-method x ln(10) se_u). A parameter is flagged as not
  * identifiable when it takes part in a correlation |rho| > 0.95, or when J is near-singular
  * (s_min < 1e-8 s_max): then the parameters that dominate the weakest singular direction are
- * named. */
+ * named. Also flagged: a parameter whose 95% interval is wider than its whole search range
+ * (poorly determined though not strongly correlated with one other), and one that sits on a
+ * bound (its interval is then not a confidence interval). */
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_matrix.h>
@@ -64,14 +66,24 @@ int cal_statistics(cal_problem *p, const double *u0, cal_stats *st, dem_err *err
     double up = u0[j] + h, dn = u0[j] - h;
     if (up > hi) up = u0[j];
     if (dn < lo) dn = u0[j];
+    /* central difference; one-sided where a bound or a parameter set the law rejects
+     * (a cross-field constraint such as f0p >= f0) is in the way */
     u[j] = up;
-    int fail = cal_residuals(p, u, r1, mod, &e);
+    int fail_up = up == u0[j] ? 0 : cal_residuals(p, u, r1, mod, &e);
+    if (up == u0[j] || fail_up) {
+      memcpy(r1, r0, sizeof(double) * (size_t)n);
+      up = u0[j];
+    }
     u[j] = dn;
-    fail = fail || cal_residuals(p, u, r2, mod, &e);
-    if (fail) {
+    int fail_dn = dn == u0[j] ? 0 : cal_residuals(p, u, r2, mod, &e);
+    if (dn == u0[j] || fail_dn) {
+      memcpy(r2, r0, sizeof(double) * (size_t)n);
+      dn = u0[j];
+    }
+    if (!(up > dn)) {
       snprintf(st->warning, sizeof st->warning,
-               "no statistics: the model fails next to the optimum in '%s' (%s)", c->fr[j].name,
-               e.msg);
+               "no statistics: the model fails on both sides of the optimum in '%s' (%s)",
+               c->fr[j].name, e.msg);
       goto done;
     }
     for (int k = 0; k < n; k++) gsl_matrix_set(J, (size_t)k, (size_t)j, (r1[k] - r2[k]) / (up - dn));
@@ -149,6 +161,25 @@ int cal_statistics(cal_problem *p, const double *u0, cal_stats *st, dem_err *err
              "%sThe Jacobian is near-singular (condition number %.3g): %s cannot be determined "
              "by these targets.",
              l ? " " : "", st->cond, names);
+  }
+  for (int j = 0; j < np; j++) {
+    double lo, hi;
+    cal_scaled_bounds(&c->fr[j], &lo, &hi);
+    double tol = 1e-6 * (hi - lo);
+    if (st->se_u[j] * t > (hi - lo)) {
+      size_t l = strlen(st->warning);
+      snprintf(st->warning + l, sizeof st->warning - l,
+               "%s'%s' is poorly determined: its 95%% interval is wider than its whole search "
+               "range.",
+               l ? " " : "", c->fr[j].name);
+    }
+    if (u0[j] <= lo + tol || u0[j] >= hi - tol) {
+      size_t l = strlen(st->warning);
+      snprintf(st->warning + l, sizeof st->warning - l,
+               "%s'%s' sits at its %s bound: the optimum is constrained there and its interval "
+               "is not a confidence interval.",
+               l ? " " : "", c->fr[j].name, u0[j] <= lo + tol ? "lower" : "upper");
+    }
   }
   st->ok = 1;
 done:

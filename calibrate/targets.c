@@ -159,6 +159,23 @@ int cal_targets_prepare(cal_config *c, int *nres, dem_err *err) {
     if (t->type == CAL_T_CURVE) {
       int rc = prepare_curve(t, err);
       if (rc) return rc;
+    } else if (t->type == CAL_T_UNLOADING) {
+      /* three compared points per row: f_max, alpha_p, pull-off (at abscissa alpha_max) */
+      size_t m = 3 * (size_t)t->n;
+      t->xr = malloc(sizeof(double) * m);
+      t->yr = malloc(sizeof(double) * m);
+      t->branch = malloc(sizeof(int) * m);
+      if (!t->xr || !t->yr || !t->branch) return dem_err_set(err, DEM_ENOMEM, "out of memory");
+      for (int k = 0; k < t->n; k++) {
+        const double v[3] = {t->y[k], t->z[k], t->w[k]};
+        for (int q = 0; q < 3; q++) {
+          t->xr[3 * k + q] = t->x[k];
+          t->yr[3 * k + q] = v[q];
+          t->branch[3 * k + q] = -1 - q;
+        }
+      }
+      t->nres = (int)m;
+      t->norm = NAN;
     } else {
       t->xr = malloc(sizeof(double) * (size_t)t->n);
       t->yr = malloc(sizeof(double) * (size_t)t->n);

@@ -6,8 +6,9 @@
 
 #include "dem/error.h"
 
-/* Columns xcol and ycol of the file as malloc'd arrays of *n values (SI units). */
-int cal_target_read_file(const char *path, const char *xcol, const char *ycol, double **x,
-                         double **y, int *n, dem_err *err);
+/* The ncol named columns of the file as malloc'd arrays out[0..ncol-1] of *n values each,
+ * converted to SI units. */
+int cal_target_read_file(const char *path, const char *const *cols, int ncol, double **out,
+                         int *n, dem_err *err);
 
 #endif
