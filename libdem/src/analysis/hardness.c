@@ -1,0 +1,125 @@
+/* Hardness of ball indentation, the bed surface under the indenter, and the dimensionless
+ * strain rate (dem/analysis.h).
+ *
+ *   A = pi r_b^2 = pi (D h - h^2)      thesis 2.8-2.9 (spherical cap of height h, base r_b)
+ *   H = F / A                          thesis 2.7 (during loading: the current force)
+ *   h_d = h / r = 2 h / D              thesis 5.5
+ *   gamma* = gamma_dot sqrt(d / g)     thesis 5.4 / 7.1 (Tardos et al.)
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_statistics_double.h>
+
+#include "dem/analysis.h"
+
+double dem_indent_area(double D, double h) {
+  if (!(D > 0.0) || !(h >= 0.0) || !isfinite(D) || !isfinite(h)) return NAN;
+  if (h > 0.5 * D) h = 0.5 * D; /* deeper than the equator: the full circle */
+  return M_PI * (D * h - h * h);
+}
+
+double dem_hardness(double F, double D, double h) {
+  if (!(h > 0.0) || !isfinite(F)) return NAN;
+  return F / dem_indent_area(D, h);
+}
+
+double dem_hardness_origin_sensitivity(double D, double h) {
+  if (!(D > 0.0) || !(h > 0.0) || !isfinite(D) || !isfinite(h)) return NAN;
+  if (h >= 0.5 * D) return 0.0;
+  return (D - 2.0 * h) / (D * h - h * h);
+}
+
+int dem_hardness_curve(size_t n, const double *F, const double *h, double D, double *H,
+                       double *hd, dem_err *err) {
+  if (!(D > 0.0) || !isfinite(D))
+    return dem_err_set(err, DEM_ERANGE, "hardness: indenter diameter D = %g m, must be > 0", D);
+  if (n > 0 && (!F || !h || !H))
+    return dem_err_set(err, DEM_EINVAL, "hardness: NULL F, h or H array with n = %zu", n);
+  for (size_t i = 0; i < n; i++) {
+    if (!isfinite(F[i]) || !isfinite(h[i]))
+      return dem_err_set(err, DEM_ENONFINITE, "hardness: sample %zu: F = %g N, h = %g m", i,
+                         F[i], h[i]);
+    H[i] = dem_hardness(F[i], D, h[i]);
+    if (hd) hd[i] = 2.0 * h[i] / D;
+  }
+  return DEM_OK;
+}
+
+int dem_bed_surface(size_t n, const double *x, const double *radius, double ax, double ay,
+                    double r_foot, double cell, double pct, dem_surface *out, dem_err *err) {
+  if (n > 0 && (!x || !radius))
+    return dem_err_set(err, DEM_EINVAL, "bed surface: NULL particle arrays with n = %zu", n);
+  if (!(r_foot > 0.0) || !isfinite(r_foot))
+    return dem_err_set(err, DEM_ERANGE, "bed surface: r_foot = %g m, must be > 0", r_foot);
+  if (!(cell >= 0.0) || !isfinite(cell))
+    return dem_err_set(err, DEM_ERANGE, "bed surface: cell = %g m, must be >= 0", cell);
+  if (!(pct >= 0.0 && pct <= 100.0))
+    return dem_err_set(err, DEM_ERANGE, "bed surface: pct = %g, must be in [0, 100]", pct);
+  if (!isfinite(ax) || !isfinite(ay))
+    return dem_err_set(err, DEM_ENONFINITE, "bed surface: axis (%g, %g) not finite", ax, ay);
+
+  /* The footprint particles and their mean radius. */
+  size_t m = 0;
+  double rsum = 0.0, zmax = -INFINITY;
+  for (size_t i = 0; i < n; i++) {
+    double dx = x[3 * i] - ax, dy = x[3 * i + 1] - ay;
+    if (dx * dx + dy * dy > r_foot * r_foot) continue;
+    if (!isfinite(x[3 * i + 2]) || !isfinite(radius[i]))
+      return dem_err_set(err, DEM_ENONFINITE, "bed surface: particle %zu not finite", i);
+    m++;
+    rsum += radius[i];
+    if (x[3 * i + 2] + radius[i] > zmax) zmax = x[3 * i + 2] + radius[i];
+  }
+  if (m == 0)
+    return dem_err_set(err, DEM_EINVAL,
+                       "bed surface: no particle centre within r_foot = %g m of the axis "
+                       "(%g, %g)", r_foot, ax, ay);
+  if (cell == 0.0) cell = 2.0 * rsum / (double)m;
+  if (!(cell > 0.0))
+    return dem_err_set(err, DEM_ERANGE, "bed surface: zero mean radius and cell = 0");
+  double kf = ceil(r_foot / cell);
+  if (kf > 1000.0)
+    return dem_err_set(err, DEM_ERANGE, "bed surface: cell = %g m is too small for r_foot = "
+                       "%g m (more than 2001^2 columns)", cell, r_foot);
+  size_t K = (size_t)kf, w = 2 * K + 1;
+  double *top = malloc(w * w * sizeof *top);
+  if (!top) return dem_err_set(err, DEM_ENOMEM, "bed surface: %zu columns", w * w);
+  for (size_t c = 0; c < w * w; c++) top[c] = -INFINITY;
+  for (size_t i = 0; i < n; i++) {
+    double dx = x[3 * i] - ax, dy = x[3 * i + 1] - ay;
+    if (dx * dx + dy * dy > r_foot * r_foot) continue;
+    long ix = lround(dx / cell) + (long)K, iy = lround(dy / cell) + (long)K;
+    if (ix < 0) ix = 0;
+    if (iy < 0) iy = 0;
+    if (ix >= (long)w) ix = (long)w - 1;
+    if (iy >= (long)w) iy = (long)w - 1;
+    double t = x[3 * i + 2] + radius[i];
+    size_t c = (size_t)iy * w + (size_t)ix;
+    if (t > top[c]) top[c] = t;
+  }
+  size_t nc = 0;
+  for (size_t c = 0; c < w * w; c++)
+    if (top[c] > -INFINITY) top[nc++] = top[c];
+  gsl_sort(top, 1, nc);
+  out->z = gsl_stats_mean(top, 1, nc);
+  out->sd = nc > 1 ? gsl_stats_sd_m(top, 1, nc, out->z) : 0.0;
+  out->se = out->sd / sqrt((double)nc);
+  out->z_pct = gsl_stats_quantile_from_sorted_data(top, 1, nc, pct / 100.0);
+  out->z_max = zmax;
+  out->ncol = nc;
+  out->nparticles = m;
+  free(top);
+  return DEM_OK;
+}
+
+double dem_gamma_star(double gamma_dot, double d, double g) {
+  if (!(d > 0.0) || !(g > 0.0)) return NAN;
+  return gamma_dot * sqrt(d / g);
+}
+
+double dem_indent_strain_rate(double v, double h_bed) {
+  if (!(h_bed > 0.0)) return NAN;
+  return fabs(v) / h_bed;
+}
