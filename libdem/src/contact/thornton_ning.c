@@ -1,0 +1,235 @@
+/* `thornton-ning`: Thornton & Ning (1998), adhesive elastic-perfectly-plastic spheres — the
+ * nonlinear reference law (thesis section 3.4.4.1, eqs 3.55-3.59, Figs 3.20-3.22; primary
+ * paper Powder Technol. 99:154-162, its eqs 58-77). Every assumption is listed in
+ * docs/contact-laws.md ("thornton-ning").
+ *
+ * JKR geometry with radius R (thesis 3.41-3.42):
+ *   alpha = a^2/R - sqrt(2 pi Gamma a / E*),    F_JKR(a; R) = 4 E* a^3/(3R) - sqrt(8 pi Gamma E* a^3)
+ * 1. Loading before yield: JKR with R*, first contact at alpha = 0 with F = -8/9 f_c.
+ * 2. Yield when the JKR pressure at the centre reaches p_y (3.55):
+ *      p_y = 2 E* a_y / (pi R*) - sqrt(2 Gamma E* / (pi a_y)).
+ * 3. Plastic loading (a > a_y, alpha > alpha_max): the JKR pressure cut off at p_y over the
+ *    central disc a_p, with a^2 = a_p^2 + a_y^2 as in the non-adhesive case, gives
+ *      F = 4 E* a_y^3/(3R*) + pi p_y (a^2 - a_y^2) - a_y sqrt(8 pi Gamma E* a),
+ *    still with the JKR relation alpha(a; R*). Its slope dF/dalpha is thesis eq (3.56); it is
+ *    tangent to the JKR curve at yield.
+ * 4. Unloading / reloading below alpha_max: JKR with the flattened radius R_p (3.58),
+ *      R_p = R* F*_max / (F_max + sqrt(4 f_c F*_max)),  F*_max = 4 E* a_max^3 / (3 R*),
+ *    i.e. the JKR(R_p) curve through (a_max, F_max), shifted by alpha_c0 = a_max^2 (1/R* -
+ *    1/R_p) so that it also passes through alpha_max. Pull-off f_cp = 1.5 pi Gamma R_p (3.59).
+ * 5. Breakage at the minimum overlap of that curve (F = -5/9 f_cp); re-contact at alpha_c0
+ *    with F = -8/9 f_cp (thesis Fig 3.20, [44]).
+ * Damping (optional, e < 1): f_d = eta_lin(e) sqrt(m* k) alpha_dot, k = max(dF/dalpha, 0) —
+ * Thornton & Ning had none; e = 1 (default) is the reference law.
+ */
+#include <float.h>
+#include <gsl/gsl_poly.h>
+#include <math.h>
+
+#include "dem/contact.h"
+#include "dem/jkr_radius.h"
+#include "dem/material.h"
+
+enum { C_ES, C_GAMMA, C_PY, C_ETA, C_K1, C_K2 };
+
+/* History. Every JKR curve of radius rho is used in the dimensionless form of
+ * dem/jkr_radius.h: with A0 = (2 pi Gamma rho^2 / E*)^(1/3) (the jump-in radius) and
+ * alpha_s = A0^2 / rho,
+ *   alpha = alpha_s (x^4 - x),  a = A0 x^2,  F = f_c(rho) (16 x^6 - 24 x^3) / 9,
+ *   dF/dalpha = f_c(rho) (8/3) x^2 (4x^3 - 3) / (alpha_s (4x^3 - 1)),   f_c = 1.5 pi Gamma rho,
+ * (x = 1: jump-in, -8/9 f_c; x^3 = 3/4: pull-off, -f_c; x^3 = 1/4: breakage, -5/9 f_c), so
+ * that an evaluation costs one quartic solve and no further roots; the scales are cached. */
+enum {
+  H_STATE, /* 0 fresh, 1 in contact, 2 separated after breakage */
+  H_RP,    /* unloading radius R_p (= R* before yield), m */
+  H_AC0,   /* alpha_c0: offset of the unloading curve = re-contact overlap, m */
+  H_AMAX,  /* alpha_max (>= alpha_y), m */
+  H_FMAX,  /* F_max, N */
+  H_AY,    /* a_y, m */
+  H_ALY,   /* alpha_y, m */
+  H_P0,    /* 4 E* a_y^3 / (3 R*) - pi p_y a_y^2, N */
+  H_A,     /* contact radius at the last call, m (diagnostic) */
+  H_FCP,   /* f_cp = 1.5 pi Gamma R_p, N */
+  H_AF,    /* breakage overlap of the current curve, m */
+  H_A0P,   /* A0 of the R_p curve, m */
+  H_IASP,  /* 1 / alpha_s of the R_p curve, 1/m */
+  H_A0S,   /* A0 of the R* curve, m */
+  H_SA0S,  /* sqrt(A0 of the R* curve), m^1/2 */
+  H_IASS,  /* 1 / alpha_s of the R* curve, 1/m */
+  H_N
+};
+enum { ST_FRESH = 0, ST_CONTACT = 1, ST_APART = 2 };
+
+static const dem_coef_spec coefs[] = {
+    {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
+    {"nu", "-", "Poisson's ratio of the particle", -0.99, 0.5, NAN},
+    {"wall_E", "Pa", "Young's modulus of the wall or second particle (default: E; 1e30 = rigid)",
+     1e3, 1e30, -1.0},
+    {"wall_nu", "-", "Poisson's ratio of the wall or second particle (default: nu)", -0.99, 0.5,
+     -2.0},
+    {"gamma", "J/m^2", "interface energy Gamma, f_c = 1.5 pi Gamma R*", DBL_MIN, 1e3, NAN},
+    {"py", "Pa", "limiting contact pressure p_y (thesis 3.55)", DBL_MIN, 1e12, NAN},
+    {"e", "-", "restitution of the optional viscous damping (1 = none, the reference law)", 1e-3,
+     1.0, 1.0},
+};
+
+static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
+  (void)err;
+  double E = dem_params_get_or(ps, "E", NAN), nu = dem_params_get_or(ps, "nu", NAN);
+  double wE = dem_params_get_or(ps, "wall_E", -1.0), wnu = dem_params_get_or(ps, "wall_nu", -2.0);
+  if (wE < 0.0) wE = E;
+  if (wnu < -1.0) wnu = nu;
+  c[C_ES] = dem_reduced_modulus(E, nu, wE, wnu);
+  c[C_GAMMA] = dem_params_get_or(ps, "gamma", NAN);
+  c[C_PY] = dem_params_get_or(ps, "py", NAN);
+  c[C_ETA] = dem_damping_eta_linear(dem_params_get_or(ps, "e", 1.0));
+  c[C_K1] = sqrt(2.0 * M_PI * c[C_GAMMA] / c[C_ES]); /* m^1/2: alpha = a^2/R - K1 sqrt(a) */
+  c[C_K2] = sqrt(8.0 * M_PI * c[C_GAMMA] * c[C_ES]); /* N/m^3/2: F = ... - K2 a^3/2 */
+  return DEM_OK;
+}
+
+/* a_y from thesis (3.55): with s = sqrt(a_y) and k = pi R / (2 E*),
+ * s^3 - k p_y s - k sqrt(2 Gamma E* / pi) = 0: one positive root (one sign change), two
+ * Newton steps polish it. */
+static double yield_radius(const double *c, double R) {
+  double k = M_PI * R / (2.0 * c[C_ES]);
+  double b = -k * c[C_PY], d = -k * sqrt(2.0 * c[C_GAMMA] * c[C_ES] / M_PI);
+  double x0 = NAN, x1 = NAN, x2 = NAN;
+  int n = gsl_poly_solve_cubic(0.0, b, d, &x0, &x1, &x2);
+  double s = n == 1 ? x0 : fmax(x0, fmax(x1, x2));
+  for (int i = 0; i < 2; i++) s -= (s * s * s + b * s + d) / (3.0 * s * s + b);
+  return s * s;
+}
+
+/* The per-contact yield constants; error if the law cannot represent the set: alpha_y <= 0
+ * (adhesion-induced yield, the jump-in radius a_0 already exceeds a_y) would make the first
+ * contact plastic with F_max < -8/9 f_cp, so that the re-contact overlap alpha_c0 lies
+ * beyond alpha_max and the re-contact rule contradicts the loading rule. */
+static int yield_point(const double *c, const dem_geom *g, double *ay, double *aly, double *p0,
+                       dem_err *err) {
+  double R = g->R;
+  *ay = yield_radius(c, R);
+  *aly = dem_jkr_alpha(R, c[C_ES], c[C_GAMMA], *ay);
+  *p0 = 4.0 * c[C_ES] * *ay * *ay * *ay / (3.0 * R) - M_PI * c[C_PY] * *ay * *ay;
+  if (!(*aly > 0.0) || !isfinite(*p0))
+    return dem_err_set(err, DEM_EPHYSICS,
+                       "law 'thornton-ning': yield at or before first contact (alpha_y = %g m, "
+                       "a_y = %g m) for py = %g Pa, gamma = %g J/m^2, E* = %g Pa, R* = %g m: "
+                       "adhesion-induced yield is outside the model (raise py; needs alpha_y > "
+                       "0, i.e. py > %g Pa)",
+                       *aly, *ay, c[C_PY], c[C_GAMMA], c[C_ES], R,
+                       /* p_y at a_y = a(alpha = 0) = (2 pi Gamma R^2/E*)^(1/3) */
+                       2.0 * c[C_ES] * cbrt(2.0 * M_PI * c[C_GAMMA] * R * R / c[C_ES]) /
+                               (M_PI * R) -
+                           sqrt(2.0 * c[C_GAMMA] * c[C_ES] /
+                                (M_PI * cbrt(2.0 * M_PI * c[C_GAMMA] * R * R / c[C_ES]))));
+  return DEM_OK;
+}
+
+/* Set the R_p curve's cached scales and breakage overlap (alpha_c0 already set). */
+static void set_curve(const double *c, double *h, double rp) {
+  double a0 = cbrt(2.0 * M_PI * c[C_GAMMA] * rp * rp / c[C_ES]), as = a0 * a0 / rp;
+  h[H_RP] = rp;
+  h[H_A0P] = a0;
+  h[H_IASP] = 1.0 / as;
+  h[H_FCP] = 1.5 * M_PI * c[C_GAMMA] * rp; /* (3.59) */
+  h[H_AF] = h[H_AC0] + DEM_JKR_QMIN * as;  /* breakage, -5/9 f_cp */
+}
+
+static int init(const double *c, const dem_geom *g, double *h, dem_err *err) {
+  double ay, aly, p0;
+  int rc = yield_point(c, g, &ay, &aly, &p0, err);
+  if (rc) return rc;
+  h[H_STATE] = ST_FRESH;
+  h[H_AC0] = 0.0;
+  set_curve(c, h, g->R);
+  h[H_A0S] = h[H_A0P];
+  h[H_SA0S] = sqrt(h[H_A0P]);
+  h[H_IASS] = h[H_IASP];
+  h[H_AMAX] = aly;
+  h[H_FMAX] = dem_jkr_force(g->R, c[C_ES], c[C_GAMMA], ay);
+  h[H_AY] = ay;
+  h[H_ALY] = aly;
+  h[H_P0] = p0;
+  h[H_A] = 0.0;
+  return DEM_OK;
+}
+
+static void force(const double *c, const dem_geom *g, double *h, double alpha, double alpha_dot,
+                  dem_normal *out) {
+  if (h[H_STATE] != ST_CONTACT) {
+    if (!(alpha >= h[H_AC0])) {
+      dem_normal_zero(out);
+      return;
+    }
+    h[H_STATE] = ST_CONTACT;
+  }
+  double a, f, k;
+  if (alpha > h[H_AMAX]) { /* plastic loading on the R* geometry, thesis (3.56) */
+    const double R = g->R, fc = 1.5 * M_PI * c[C_GAMMA] * R;
+    double x = dem_jkr_quartic_root(alpha * h[H_IASS]), x3 = x * x * x;
+    a = h[H_A0S] * x * x;
+    double ky = h[H_AY] * c[C_K2] * h[H_SA0S]; /* a_y sqrt(8 pi Gamma E*) sqrt(A0) */
+    f = h[H_P0] + M_PI * c[C_PY] * a * a - ky * x;
+    k = (4.0 * M_PI * c[C_PY] * a * a / x - ky) * h[H_IASS] / (4.0 * x3 - 1.0);
+    /* (3.58): R_p = R* F*_max / (F_max + sqrt(4 f_c F*_max)), F*_max = 16/9 f_c x^6 and
+     * sqrt(4 f_c F*_max) = 24/9 f_c x^3 */
+    double fh = 16.0 / 9.0 * fc * x3 * x3;
+    double rp = R * fh / (f + 24.0 / 9.0 * fc * x3);
+    h[H_AC0] = a * a * (1.0 / R - 1.0 / rp);
+    h[H_AMAX] = alpha;
+    h[H_FMAX] = f;
+    set_curve(c, h, rp);
+  } else {
+    if (!(alpha >= h[H_AF])) { /* breakage at -5/9 f_cp; R_p and alpha_c0 are kept */
+      h[H_STATE] = ST_APART;
+      dem_normal_zero(out);
+      return;
+    }
+    double x = dem_jkr_quartic_root((alpha - h[H_AC0]) * h[H_IASP]);
+    if (!(x > 0.0)) x = cbrt(0.25); /* rounding at the breakage point */
+    double x3 = x * x * x;
+    a = h[H_A0P] * x * x;
+    f = h[H_FCP] * (16.0 * x3 * x3 - 24.0 * x3) / 9.0;
+    /* dF/dalpha > 0 only above the pull-off point x^3 = 3/4; below it the branch softens to
+     * -infinity at breakage (x^3 = 1/4), where rounding could flip the sign of the vanishing
+     * denominator: the damping stiffness is 0 there. */
+    k = x3 > 0.75 ? h[H_FCP] * (8.0 / 3.0) * x * x * (4.0 * x3 - 3.0) * h[H_IASP] /
+                        (4.0 * x3 - 1.0)
+                  : 0.0;
+  }
+  if (!(k > 0.0) || !isfinite(k)) k = 0.0;
+  h[H_A] = a;
+  out->f_el = f;
+  out->k = k;
+  out->f_damp = c[C_ETA] * sqrt(g->m * k) * alpha_dot;
+  out->f = f + out->f_damp;
+  out->f_adh = 2.0 * h[H_FCP]; /* Thornton-Yin limit mu (F + 2 f_cp), Ning's extension */
+  out->contact = 1;
+}
+
+/* Stiffness scale: 2 E* a at the deepest overlap of an impact at v, estimated as the larger of
+ * the Hertz overlap and the plastic-line overlap (k_N = pi R* p_y); the JKR unloading
+ * stiffness never exceeds 2 E* a. */
+static double kref(const double *c, const dem_geom *g, double v) {
+  double R = g->R, Es = c[C_ES];
+  double ah = pow(15.0 * g->m * v * v / (16.0 * Es * sqrt(R)), 0.4);
+  double ap = v * sqrt(g->m / (M_PI * R * c[C_PY])) + M_PI * M_PI * R * c[C_PY] * c[C_PY] /
+                                                          (4.0 * Es * Es);
+  double a0 = cbrt(2.0 * M_PI * c[C_GAMMA] * R * R / Es);
+  return 2.0 * Es * fmax(sqrt(R * fmax(ah, ap)), a0);
+}
+
+const dem_law dem_law_thornton_ning = {
+    .name = "thornton-ning",
+    .title = "Thornton & Ning 1998 elastic-plastic adhesive (JKR, p_y cut-off, R_p unloading)",
+    .source = "thesis eqs (3.41)-(3.42), (3.55)-(3.59); Thornton & Ning 1998 eqs (58)-(77)",
+    .ncoef = sizeof coefs / sizeof coefs[0],
+    .coef = coefs,
+    .nhist = H_N,
+    .flags = DEM_LAW_ADHESIVE | DEM_LAW_PLASTIC | DEM_LAW_NONLINEAR,
+    .set_coeffs = set_coeffs,
+    .init = init,
+    .force = force,
+    .kref = kref,
+};
