@@ -429,6 +429,24 @@ START_TEST(test_identifiability_warning) {
 END_TEST
 #endif
 
+#if defined(CAL_HAVE_IMPACT) && defined(CAL_HAVE_CONTACT_PATH)
+/* e(v) target: the linear spring-dashpot gives exactly its damping restitution e at every
+ * velocity, so e = 0.385 is recovered from e(v) = 0.385 at three velocities. */
+START_TEST(test_restitution_target) {
+  const char *text =
+      "law = \"linear\";\nfixed = { R = 2.45e-6; rho = 1350.0; kn = 1500.0; };\n"
+      "free = ( { name = \"e\"; min = 0.05; max = 0.95; } );\n"
+      "optimiser = { maxeval_global = 30; maxeval_local = 60; xtol_rel = 1e-9; };\n"
+      "targets = ( { type = \"restitution\"; v = [0.5, 2.0, 5.0]; e = [0.385, 0.385, 0.385]; } );\n";
+  cal_result r;
+  cal_stats st;
+  run_cfg("rest", text, TMPDIR "/rest", 0, 0, &r, &st);
+  ck_assert_msg(fabs(r.x[0] - 0.385) < 2e-3, "e = %g", r.x[0]);
+  ck_assert(r.mean_relative_error < 5e-3);
+}
+END_TEST
+#endif
+
 static Suite *suite(void) {
   Suite *s = suite_create("calibrate");
   TCase *tc = tcase_create("config");
@@ -448,6 +466,9 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_resume_and_reproducible);
   tcase_add_test(tc, test_penalty);
   tcase_add_test(tc, test_identifiability_warning);
+#if defined(CAL_HAVE_IMPACT) && defined(CAL_HAVE_CONTACT_PATH)
+  tcase_add_test(tc, test_restitution_target);
+#endif
   suite_add_tcase(s, tc);
 #else
   fprintf(stderr, "check_calibrate: round-trip, resume and reproducibility tests skipped: "
