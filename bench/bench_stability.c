@@ -269,7 +269,7 @@ int main(int argc, char **argv) {
               "| how | us/impact at 0.01 |\n|---|---|---|---|---|---|---|---|---|---|\n");
   for (int i = 0; i < ns; i++) {
     const summary *s = &sums[i];
-    char msg[DEM_ERRMSG_LEN];
+    char msg[DEM_ERRMSG_LEN + 32];
     snprintf(msg, sizeof msg, "%s", s->msg);
     for (char *c = msg; *c; c++)
       if (*c == '"') *c = '\'';
