@@ -137,16 +137,18 @@ done
 {
   echo "set terminal $TERM_PNG"
   echo "set datafile separator ','"
-  echo "set grid; set logscale x; set key top right font ',10' noenhanced"
+  echo "set grid; set logscale x; set key outside right top font ',10' noenhanced"
   echo "set xlabel 'impact velocity v (m/s)'; set ylabel 'coefficient of restitution e (-)'"
-  echo "set yrange [0:0.8]; set xrange [0.3:50]"
+  echo "set yrange [0:1.05]; set xrange [0.3:50]"
   echo "set title 'e(v), 2.45 um ammonium fluorescein sphere on silicon, no damping (cf. thesis Fig 4.24)'"
   echo "set output '$OUT/e-v-all.png'"
   printf "plot "
+  COLORS=("#9400d3" "#009e73" "#56b4e9" "#e69f00" "#e51e10" "#0072b2" "#808080" "#a0522d"
+          "#ff69b4" "#2e8b57")
   i=0
   for law in "${ok_laws[@]}"; do
     [ $i -gt 0 ] && printf ", "
-    style="lw 2 pt $((i + 4)) ps 0.8 lc $((i + 1))"
+    style="lw 2 pt $((i + 4)) ps 0.8 lc rgb '${COLORS[i % 10]}'"
     [ "$law" = "$REF" ] && style="lw 4 pt 7 ps 0.8 lc rgb 'black'"
     printf "'%s' using 1:2 with linespoints %s title '%s'" "$OUT/e-v-$law.csv" "$style" "$law"
     i=$((i + 1))
@@ -240,24 +242,34 @@ if [ $have_ref = 1 ]; then
     echo
     echo "baseline (harness + indirect call) $base ns; machine: $(jq -r .cpu "$OUT/bench-contact.json"), gcc $(jq -r .compiler "$OUT/bench-contact.json")"
   } > "$OUT/cost-deviation.md"
+  # One point per law with its own symbol and a legend (labels would overlap); the reference
+  # (D = 0) is the vertical line at its cost; log scales.
+  names=$(tail -n +2 "$OUT/cost-deviation.csv" | cut -d, -f1 | grep -vx "$REF" | tr '\n' ' ')
+  nrow=$(wc -w <<< "$names")
+  refcost=$(awk -F, -v r="$REF" '$1 == r {print $2}' "$OUT/cost-deviation.csv")
   gnuplot <<EOF
 set terminal $TERM_WIDE
 set datafile separator ','
 set grid
-set logscale x
-set key off
+set logscale xy
+set xrange [0.3:1000]
+set yrange [0.005:5]
 set output '$OUT/cost-deviation.png'
-set multiplot layout 1,2 title 'Cost of one force evaluation vs deviation from thornton-ning (reference case, 2, 5, 10 m/s)' noenhanced
+set multiplot layout 1,2 title 'Cost of one force evaluation vs deviation from $REF (reference case, 2, 5, 10 m/s); dashed: $REF itself' noenhanced
 set xlabel 'cost per evaluation, best of 9 minus baseline (ns; below 0.3 drawn at 0.3)'
+set arrow 1 from $refcost, graph 0 to $refcost, graph 1 nohead dt 2 lw 2 lc rgb 'black'
+names = "$names"
+sel(c) = (c > 0.3 ? c : 0.3)
+set key off
 set ylabel 'D_f: RMS force difference on the path / f_{TN}(alpha_{max}) (-)'
 set title 'force-overlap curve'
-set offsets graph 0.1, graph 0.25, graph 0.1, graph 0.1
-plot '$OUT/cost-deviation.csv' every ::1 using (\$2 > 0.3 ? \$2 : 0.3):7 with points pt 7 ps 2 lc rgb 'navy', \
-     '' every ::1 using (\$2 > 0.3 ? \$2 : 0.3):7:1 with labels left offset 1.2,0 noenhanced
+plot for [i=1:$nrow] '$OUT/cost-deviation.csv' using (strcol(1) eq word(names, i) ? sel(\$2) : NaN):7 \
+     with points pt (i + 3) ps 2.2 lw 2 title word(names, i) noenhanced
+set key outside right top noenhanced
 set ylabel 'D_e: RMS of e - e_{TN} over 2, 5, 10 m/s (-)'
 set title 'coefficient of restitution'
-plot '$OUT/cost-deviation.csv' every ::1 using (\$2 > 0.3 ? \$2 : 0.3):11 with points pt 7 ps 2 lc rgb 'dark-red', \
-     '' every ::1 using (\$2 > 0.3 ? \$2 : 0.3):11:1 with labels left offset 1.2,0 noenhanced
+plot for [i=1:$nrow] '$OUT/cost-deviation.csv' using (strcol(1) eq word(names, i) ? sel(\$2) : NaN):11 \
+     with points pt (i + 3) ps 2.2 lw 2 title word(names, i)
 unset multiplot
 EOF
 else
