@@ -162,7 +162,7 @@ T5=(--set R=2.45e-6 --set rho=1350 --set E=1.2e9 --set nu=0.33 --set wall_E=166e
     --set wall_nu=0.28 --set gamma=0.24)
 "$NANTOOL" "${T5[@]}" --py 5e6:120e6:200 --out "$OUT/vys-py.csv" 2> "$OUT/vys-py.log"
 "$NANTOOL" "${T5[@]}" --py 5e6:120e6:200 --out "$OUT/vys-py.h5" 2> /dev/null
-"$NANTOOL" "${T5[@]}" --py 5e6:120e6:2000 --json > "$OUT/vys-py.json"
+"$NANTOOL" "${T5[@]}" --py 5e6:120e6:2000 --json > "$OUT/vys-py.json" 2> /dev/null
 PYC=$(json_field "$OUT/vys-py.json" py_crit)
 PYS=$(json_field "$OUT/vys-py.json" py_vys_equals_vs)
 VS=$(json_field "$OUT/vys-py.json" V_s)
@@ -191,8 +191,9 @@ EOF
 # ---- cost per evaluation against the deviation from thornton-ning ---------------------------
 if [ $have_ref = 1 ]; then
   "$BENCH" --json --time 0.1 --repeats 9 > "$OUT/bench-contact.json"
-  ns_of() { # ns_best of row $1
-    jq -r --arg n "$1" '.results[] | select(.name == $n) | .ns_best' "$OUT/bench-contact.json"
+  ns_of() { # ns_best of row $1 (the JSON is indented one field a line; no jq needed)
+    awk -v n="$1" -F'"' '$2 == "name" {cur = $4} $2 == "ns_best" && cur == n {
+      sub(/.*: */, ""); sub(/,.*/, ""); print; exit }' "$OUT/bench-contact.json"
   }
   base=$(ns_of baseline)
   echo "law,cost [ns],ns_best [ns],D_f(2),D_f(5),D_f(10),D_f,e(2),e(5),e(10),D_e" \
@@ -240,7 +241,7 @@ if [ $have_ref = 1 ]; then
     echo "|---|---|---|---|---|---|---|---|---|---|"
     tail -n +2 "$OUT/cost-deviation.csv" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $4, $5, $6, $7, $8, $9, $10, $11}'
     echo
-    echo "baseline (harness + indirect call) $base ns; machine: $(jq -r .cpu "$OUT/bench-contact.json"), gcc $(jq -r .compiler "$OUT/bench-contact.json")"
+    echo "baseline (harness + indirect call) $base ns; machine: $(grep -o '"cpu": *"[^"]*"' "$OUT/bench-contact.json" | cut -d'"' -f4), gcc $(grep -o '"compiler": *"[^"]*"' "$OUT/bench-contact.json" | cut -d'"' -f4)"
   } > "$OUT/cost-deviation.md"
   # One point per law with its own symbol and a legend (labels would overlap); the reference
   # (D = 0) is the vertical line at its cost; log scales.
