@@ -242,6 +242,16 @@ START_TEST(test_rejects_bad_files) {
   ck_assert_ptr_nonnull(strstr(err.msg, "pasha-simplifieX"));
   fprintf(stderr, "law: %s\n", err.msg);
 
+  /* an HDF5 file that is not a checkpoint of ours (format tag) */
+  at = memmem(b, n, "dem-checkpoint", 14);
+  ck_assert_ptr_nonnull(at);
+  at[0] = 'x';
+  spit(bad, b, n);
+  at[0] = 'd';
+  ck_assert_ptr_null(dem_sim_checkpoint_read(bad, NULL, NULL, &err));
+  ck_assert_int_eq(err.code, DEM_EPARSE);
+  ck_assert_ptr_nonnull(strstr(err.msg, "format tag"));
+
   /* garbage */
   memset(b, 0x5a, n < 4096 ? n : 4096);
   spit(bad, b, n);

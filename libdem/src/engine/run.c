@@ -246,6 +246,9 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
   const long step0 = s->st.steps;
   int stop = STOP_NONE, build_rc = DEM_OK, strikes = 0;
   int intr_seen = 0; /* the interrupt flag as thread 0 read it this step (shared) */
+  int walls_moved = 0; /* thread 0's verdict after moving the walls (shared): evaluated by
+                          each thread, it could read a wall point that another thread,
+                          already inside the rebuild, has just reset */
   long done = 0;
   double ke_last = 0.0;
   /* One parallel region for the whole run: per step, a barrier after the drift (forces read
@@ -277,10 +280,11 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
       if (t == 0)
         for (int w = 0; w < s->nwall; w++)
           for (int k = 0; k < 3; k++) s->wall[w].spec.p[k] += s->dt * s->wall[w].spec.v[k];
+      if (t == 0) walls_moved = dem_engine_walls_moved(s);
 #pragma omp barrier
       double md2 = 0.0;
       for (int u = 0; u < nt; u++) md2 = s->td[u].max_disp2 > md2 || !(s->td[u].max_disp2 == s->td[u].max_disp2) ? s->td[u].max_disp2 : md2;
-      if (md2 > half_skin2 || !(md2 == md2) || dem_engine_walls_moved(s)) {
+      if (md2 > half_skin2 || !(md2 == md2) || walls_moved) {
 #pragma omp single
         {
           build_rc = dem_engine_build(s, err);
