@@ -19,10 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../libdem/src/contact/jkr_core.h"
 #include "dem/contact.h"
 #include "dem/error.h"
-#include "dem/jkr_radius.h"
+#include "dem/jkr.h"
 #include "dem/material.h"
 #include "dem/params.h"
 
@@ -249,7 +248,7 @@ static dem_normal ev(const dem_contact *ct, const dem_geom *g, double *hist, dou
   return n;
 }
 
-/* JKR scales computed here from the sources, independently of jkr_core.h. */
+/* JKR scales computed here from the sources, independently of dem/jkr.h. */
 typedef struct {
   double Es, fc, alpha_f, alpha_0, alpha_c, w_adh;
 } jkr_ref;
@@ -306,7 +305,7 @@ START_TEST(test_jkr_root) {
     if (err > worst_cbrt) worst_cbrt = err;
   }
   ck_assert_msg(worst_cbrt < 1.0, "cube root error %g ulp", worst_cbrt);
-  /* Landmarks of jkr_core.h exactly. */
+  /* Landmarks of dem/jkr.h exactly. */
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(0.0)), -8.0 / 9.0, 4e-16);
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(-1.0 / 3.0)), -1.0, 1e-8);
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(2.0 / 3.0 * cbrt(2.0))), 0.0, 4e-15);
@@ -319,9 +318,11 @@ START_TEST(test_jkr_root) {
 END_TEST
 
 START_TEST(test_jkr_cross_check) {
-  /* The law's force against the independent JKR helper of dem/jkr_radius.h (written for
-   * thornton-ning, another scaling, libm cbrt and a Newton polish): F(a(alpha)) along the
-   * whole stable branch, to round-off. */
+  /* The law's force (dimensionless form F = f_c (s^6 - 2 s^3) with cached scales) against
+   * the dimensional helpers of dem/jkr.h (eq 3.41 evaluated at the radius a(alpha) of 3.42,
+   * the form thornton-ning's tests use): F(a(alpha)) along the whole stable branch, to
+   * round-off. (Before the two JKR solvers were merged this compared two independent
+   * solvers; test_jkr_root checks the one left against extended precision.) */
   dem_params ps;
   jkr_params(&ps);
   dem_contact ct;
