@@ -541,6 +541,7 @@ START_TEST(test_tn_path) {
   /* 2. elastic JKR loading with R* up to alpha_y */
   double al = 0.7 * aly, a = dem_jkr_radius(R, Es, G, al);
   REL(at(&L, al).f, 4 * Es * a * a * a / (3 * R) - sqrt(8 * M_PI * G * Es * a * a * a), 1e-13);
+  REL(at(&L, al).alpha_t, a * a / R, 1e-13); /* Mindlin overlap a^2/R* (contact.h) */
   /* 3. unloading before yield: JKR pull-off -f_c, breakage at alpha_f with -5/9 f_c */
   double ac = cbrt(9 * M_PI * G * R * R / (8 * Es));
   REL(at(&L, dem_jkr_alpha(R, Es, G, ac)).f, -fc, 1e-12);

@@ -87,6 +87,8 @@ void dem_jkrlaw_force(const double *c, const dem_geom *g, double *hist, double a
   out->f_damp = c[DEM_JKR_C_ETA] > 0.0 ? c[DEM_JKR_C_ETA] * sqrt(g->m * k) * alpha_dot : 0.0;
   out->f = out->f_el + out->f_damp;
   out->f_adh = 2.0 * fc;
+  double s2 = s * s;
+  out->alpha_t = s2 * s2 / idc; /* a^2/R* = delta_c s^4 (dem/jkr.h) */
   out->contact = 1;
 }
 

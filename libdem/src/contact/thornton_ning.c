@@ -201,6 +201,7 @@ static void force(const double *c, const dem_geom *g, double *h, double alpha, d
   out->f_damp = c[C_ETA] * sqrt(g->m * k) * alpha_dot;
   out->f = f + out->f_damp;
   out->f_adh = 2.0 * h[H_FCP]; /* Thornton-Yin limit mu (F + 2 f_cp), Ning's extension */
+  out->alpha_t = a * a / g->R; /* Mindlin at the contact radius (8 G* a), also on R_p curves */
   out->contact = 1;
 }
 
