@@ -313,6 +313,16 @@ START_TEST(test_jkr_root) {
     if (err > worst_cbrt) worst_cbrt = err;
   }
   ck_assert_msg(worst_cbrt < 1.0, "cube root error %g ulp", worst_cbrt);
+  /* Its first layer (two Halley steps), used inside dem_jkr_root before the Newton step on
+   * the quartic. */
+  double worst_h = 0.0;
+  for (double lx = log(1.0 / 9.0); lx < log(1e40); lx += 1e-3) {
+    double x = exp(lx);
+    long double r = cbrtl((long double)x);
+    double err = (double)(fabsl((long double)dem_jkr_cbrt_halley(x) - r) / r) / DBL_EPSILON;
+    if (err > worst_h) worst_h = err;
+  }
+  ck_assert_msg(worst_h < 32.0, "two-Halley cube root error %g ulp", worst_h);
   /* Landmarks of dem/jkr.h exactly. */
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(0.0)), -8.0 / 9.0, 4e-16);
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(-1.0 / 3.0)), -1.0, 1e-8);

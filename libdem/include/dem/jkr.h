@@ -37,15 +37,17 @@
  * branch we need, given by Cardano, m = u + v with u = cbrt(1/9 + sqrt(1/81 + A^3/27)),
  * u v = -A/3, u^3 + v^3 = 2/9, written as m = (2/9) / (u^2 - u v + v^2) so that nothing
  * cancels for any A. One Newton step on the quartic then removes the rounding of the closed
- * form (forward error 24 -> 4 ulp for about 15% more time). Cost: one cube root (in line,
- * dem_jkr_cbrt), three sqrt, three divisions; no history, no iteration count, no starting
- * guess. For A > 1e12: s = A^(1/4) plus one Newton step (also keeps A^3 finite). Near A_f the
+ * form (and the last ~30 ulp of the cube root, so that its own final Newton step is not
+ * needed: the accuracy of the polish for the cost of none). Cost: one cube root in line
+ * (exponent-bit guess, two Halley steps), three sqrt, five divisions; no history, no
+ * iteration count, no starting guess. For A > 1e12: s = A^(1/4) plus one Newton step (also keeps A^3 finite). Near A_f the
  * root is double, so its forward error grows like eps / sqrt(A - A_f), as for any method.
  *
- * Why this solver: of the two closed forms the project had (this one and an x^4 - x = q
- * form with libm cbrt and a conditional Newton polish), this one was 1.7 times faster
- * (41 vs 70 ns per root); the other was more accurate (2.3 vs 24 ulp); the unconditional
- * Newton step gives both (4 ulp, 45 ns). Measurements: docs/contact-laws.md ("jkr").
+ * Why this solver: of the two closed forms the project had (this one without the Newton
+ * step, and an x^4 - x = q form with libm cbrt and a conditional Newton polish), this one was
+ * 1.7 times faster (25 vs 41 ns per root), the other more accurate (2.4 vs 24 ulp worst
+ * forward error); with the Newton step moved here from the cube root: 4 ulp at 28 ns.
+ * Measurements: docs/contact-laws.md ("jkr").
  */
 #ifndef DEM_JKR_H
 #define DEM_JKR_H
@@ -64,11 +66,13 @@
  * ~1e-14 near the double root at A_f). */
 #define DEM_JKR_43LO 7.401486830834377e-17
 
-/* Cube root of x for 1/9 <= x < 1e40 (the argument u^3 below): a first guess from the
- * exponent bits (relative error < 4%), two Halley steps (cubic convergence: ~1e-5, then
- * ~1e-15) and a final Newton step (round-off). Three divisions, no libm call: about three
- * times faster than cbrt() here, and the result is within an ulp of it. */
-static inline double dem_jkr_cbrt(double x) {
+/* Cube root of x for 1/9 <= x < 1e40 (the argument u^3 below), in two layers.
+ * dem_jkr_cbrt_halley: a first guess from the exponent bits (relative error < 4%) and two
+ * Halley steps (cubic convergence: ~1e-5, then ~1e-14; within 32 ulp, tested); enough inside
+ * dem_jkr_root, whose final Newton step on the quartic removes that error too.
+ * dem_jkr_cbrt: one more Newton step, round-off (within an ulp of cbrtl, tested). Two or
+ * three divisions, no libm call: about three times faster than cbrt() here. */
+static inline double dem_jkr_cbrt_halley(double x) {
   uint64_t i;
   memcpy(&i, &x, sizeof i);
   i = i / 3 + UINT64_C(0x2a9f7893782da1ce);
@@ -78,6 +82,10 @@ static inline double dem_jkr_cbrt(double x) {
     double y3 = y * y * y;
     y *= (y3 + 2.0 * x) / (2.0 * y3 + x);
   }
+  return y;
+}
+static inline double dem_jkr_cbrt(double x) {
+  double y = dem_jkr_cbrt_halley(x);
   return y - (y * y * y - x) / (3.0 * y * y);
 }
 
@@ -98,7 +106,7 @@ static inline double dem_jkr_root(double A) {
   double D = 1.0 / 81.0 + A * A * A / 27.0;
   double c = 1.0 / 9.0 + sqrt(D > 0.0 ? D : 0.0);
   double t = A / (3.0 * c);
-  double u = dem_jkr_cbrt(c);
+  double u = dem_jkr_cbrt_halley(c);
   double v = -t * u * u;
   double Q = u * u - u * v + v * v;
   double iq = 1.0 / Q, sq = sqrt(Q);

@@ -71,6 +71,7 @@ void dem_jkrlaw_force(const double *c, const dem_geom *g, double *hist, double a
     hist[DEM_HIST_STATE] = 1.0;
     dem_jkr_scales(c[DEM_JKR_C_GAMMA], c[DEM_JKR_C_ES], g->R, &hist[DEM_JKR_H_FC], NULL, &dc);
     hist[DEM_JKR_H_IDC] = 1.0 / dc;
+    hist[DEM_JKR_H_DC] = dc;
   }
   double fc = hist[DEM_JKR_H_FC], idc = hist[DEM_JKR_H_IDC];
   double A = alpha * idc;
@@ -88,7 +89,7 @@ void dem_jkrlaw_force(const double *c, const dem_geom *g, double *hist, double a
   out->f = out->f_el + out->f_damp;
   out->f_adh = 2.0 * fc;
   double s2 = s * s;
-  out->alpha_t = s2 * s2 / idc; /* a^2/R* = delta_c s^4 (dem/jkr.h) */
+  out->alpha_t = s2 * s2 * hist[DEM_JKR_H_DC]; /* a^2/R* = delta_c s^4 (dem/jkr.h) */
   out->contact = 1;
 }
 

@@ -10,8 +10,9 @@
 
 /* Compiled coefficients. */
 enum { DEM_JKR_C_ES, DEM_JKR_C_GAMMA, DEM_JKR_C_ETA, DEM_JKR_C_E, DEM_JKR_NCOEF };
-/* History: state (0 apart, 1 in contact), f_c (N) and 1/delta_c (1/m) cached at formation. */
-enum { DEM_JKR_H_FC = 1, DEM_JKR_H_IDC = 2, DEM_JKR_NHIST = 3 };
+/* History: state (0 apart, 1 in contact), f_c (N), 1/delta_c (1/m) and delta_c (m) cached at
+ * formation (delta_c for alpha_t = delta_c s^4: a division there cost 10 ns per force). */
+enum { DEM_JKR_H_FC = 1, DEM_JKR_H_IDC = 2, DEM_JKR_H_DC = 3, DEM_JKR_NHIST = 4 };
 
 /* The coefficient table, shared (a definition of another length fails to compile). */
 #define DEM_JKR_NCOEFS 6
