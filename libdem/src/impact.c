@@ -305,8 +305,14 @@ static int run_verlet(const dem_impact_scene *sc, const dem_impact_opts *o, doub
       res->steps = step;
       res->w_damp = w_damp;
       /* Verlet's own error in e is O((omega dt)^2), measured below 0.06 (omega dt)^2 for the
-       * linear and Hertz laws up to omega dt = 1.5; a blow-up gains far more. */
-      double tol = 1e-9 + 0.1 * (dt / tscale) * (dt / tscale);
+       * linear and Hertz laws up to omega dt = 1.5; a blow-up gains far more. A law with
+       * history (plastic or adhesive) has kinks where a branch changes inside a step, and
+       * there the local error is first order in dt: a random probe of nearly elastic
+       * pasha-simplified sets found e = 1.00001 at dt = 0.01 sqrt(m* / k), a false alarm under
+       * the second-order bound, so such laws get a first-order allowance as well. */
+      double r = dt / tscale;
+      unsigned kinked = ct->law->flags & (DEM_LAW_PLASTIC | DEM_LAW_ADHESIVE);
+      double tol = 1e-9 + 0.1 * r * r + (kinked ? 0.01 * r : 0.0);
       return dem_impact_finish(sc, &sum, v0, v_e, t_n + s, 0, tol, res, err);
     }
     w_damp += 0.5 * dt * (pw + n.f_damp * v_pred);

@@ -167,6 +167,16 @@ int dem_nan_coeffs_init(dem_nan_coeffs *k, const dem_nan_input *in, dem_err *err
   k->alpha0 = k->f0 / k->kel;                                 /* eq (6) */
   k->fy = dem_nan_fy(k->R, k->Es, k->py, k->kel);             /* eq (28) */
   k->alphay = k->alpha0 + k->fy / k->kel;                     /* eq (7) */
+  /* The yield overlap must lie inside the overlap range of the law's small-overlap geometry
+   * (eqs 30-31 are Hertz/JKR results, a^2 = R* alpha): alpha_y >= R* would make every impact
+   * elastic up to overlaps beyond the radius (the sibling law `thornton` rejects
+   * alpha_y > R* the same way). */
+  if (!(k->alphay < k->R))
+    return dem_err_set(err, DEM_EPHYSICS,
+                       "nan: the yield overlap alpha_y = %g m (eqs 7, 29) is not below R* = %g m "
+                       "for py = %g Pa, E* = %g Pa, k_el = %g N/m: p_y is too large for the "
+                       "law's small-overlap geometry",
+                       k->alphay, k->R, k->py, k->Es, k->kel);
   return DEM_OK;
 }
 

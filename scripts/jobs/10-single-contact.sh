@@ -51,6 +51,11 @@ for law in "${LAWS[@]}"; do
   args=("${SCENE[@]}")
   for k in $(coef_keys "$law"); do
     case $k in E | nu) continue ;; esac
+    # `nan` takes k_el, k_p and k_cl from its own correlations (paper eq 52, k_p = k_el,
+    # eq 38; physics notes "when no loading data exist"): the thesis' Table 4.2 stiffnesses
+    # belong to the thesis' laws (its kc is 75 x the nan law's k_cl/k_el ratio, and with it
+    # nan sticks at every velocity). Same rule as job 20.
+    if [ "$law" = nan ] && [[ $k == ke || $k == kp || $k == kc ]]; then continue; fi
     if [ -n "${POOL[$k]+x}" ]; then args+=(--set "$k=${POOL[$k]}"); fi
   done
   flags=$(awk -v L="$law" -F'\t' '$1 == L {print $2}' "$OUT/laws.txt" |

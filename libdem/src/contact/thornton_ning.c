@@ -123,6 +123,16 @@ static int yield_point(const double *c, const dem_geom *g, double *ay, double *a
                                (M_PI * R) -
                            sqrt(2.0 * c[C_GAMMA] * c[C_ES] /
                                 (M_PI * cbrt(2.0 * M_PI * c[C_GAMMA] * R * R / c[C_ES]))));
+  /* Yield beyond the radius: the JKR geometry alpha = a^2/R* - ... (thesis 3.41) is a
+   * small-overlap result, and the law would stay elastic to overlaps larger than R* (the
+   * non-adhesive sibling `thornton` rejects p_y > 2 E* / pi, alpha_y > R*, the same way). */
+  if (!(*aly < R))
+    return dem_err_set(err, DEM_EPHYSICS,
+                       "law 'thornton-ning': the yield overlap alpha_y = %g m (a_y = %g m, thesis "
+                       "3.55) is not below R* = %g m for py = %g Pa, gamma = %g J/m^2, E* = %g "
+                       "Pa: p_y is too large for the law's small-overlap geometry (roughly "
+                       "py < 2 E*/pi = %g Pa)",
+                       *aly, *ay, R, c[C_PY], c[C_GAMMA], c[C_ES], 2.0 * c[C_ES] / M_PI);
   return DEM_OK;
 }
 
