@@ -2,6 +2,7 @@
 #ifndef DEM_ENGINE_INTERNAL_H
 #define DEM_ENGINE_INTERNAL_H
 
+#include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -88,6 +89,8 @@ struct dem_sim {
   int need_build;
   int need_forces;                /* forces not yet evaluated for the current state */
   dem_breakdown bd;
+  volatile sig_atomic_t *intr;   /* polled once per step (dem/checkpoint.h), or NULL */
+  long last_good;                /* step of the last breakdown check passed, -1 none */
 
   dem_nlist nl, nl_old;          /* current list and scratch for history carry-over */
   /* cell grid */

@@ -27,6 +27,7 @@
 #include <omp.h>
 #endif
 
+#include "dem/checkpoint.h"
 #include "internal.h"
 
 static double now_s(void) {
@@ -219,12 +220,19 @@ static int overlap_error(dem_sim *s, dem_err *err) {
 }
 
 /* Why a run stopped inside the parallel loop. */
-enum { STOP_NONE = 0, STOP_BUILD, STOP_OVERLAP, STOP_NONFINITE, STOP_UNSTABLE };
+enum { STOP_NONE = 0, STOP_BUILD, STOP_OVERLAP, STOP_NONFINITE, STOP_UNSTABLE, STOP_INTR };
+
+void dem_sim_set_interrupt_flag(dem_sim *s, volatile sig_atomic_t *flag) { s->intr = flag; }
+
+long dem_sim_last_good_step(const dem_sim *s) { return s->last_good; }
 
 int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
   int rc;
   if ((rc = check_ready(s, err))) return rc;
   if (nsteps < 0) return dem_err_set(err, DEM_ERANGE, "steps = %ld (allowed >= 0)", nsteps);
+  if (s->intr && *s->intr)
+    return dem_err_set(err, DEM_EINTERRUPTED, "step %ld (t = %g s): interrupted before the run",
+                       s->st.steps, s->st.time);
   double t0 = now_s();
   if (s->need_build || s->nh == 0)
     if ((rc = dem_engine_build(s, err))) return rc;
@@ -237,6 +245,10 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
   const double half_skin2 = 0.25 * s->skin * s->skin;
   const long step0 = s->st.steps;
   int stop = STOP_NONE, build_rc = DEM_OK, strikes = 0;
+  int intr_seen = 0; /* the interrupt flag as thread 0 read it this step (shared) */
+  int walls_moved = 0; /* thread 0's verdict after moving the walls (shared): evaluated by
+                          each thread, it could read a wall point that another thread,
+                          already inside the rebuild, has just reset */
   long done = 0;
   double ke_last = 0.0;
   /* One parallel region for the whole run: per step, a barrier after the drift (forces read
@@ -268,10 +280,11 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
       if (t == 0)
         for (int w = 0; w < s->nwall; w++)
           for (int k = 0; k < 3; k++) s->wall[w].spec.p[k] += s->dt * s->wall[w].spec.v[k];
+      if (t == 0) walls_moved = dem_engine_walls_moved(s);
 #pragma omp barrier
       double md2 = 0.0;
       for (int u = 0; u < nt; u++) md2 = s->td[u].max_disp2 > md2 || !(s->td[u].max_disp2 == s->td[u].max_disp2) ? s->td[u].max_disp2 : md2;
-      if (md2 > half_skin2 || !(md2 == md2) || dem_engine_walls_moved(s)) {
+      if (md2 > half_skin2 || !(md2 == md2) || walls_moved) {
 #pragma omp single
         {
           build_rc = dem_engine_build(s, err);
@@ -281,6 +294,8 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
       }
       td = &s->td[t]; /* the partition may have changed */
       forces_local(s, td);
+      /* read before the barrier, used by all after it: every thread takes the same exit */
+      if (t == 0) intr_seen = s->intr ? *s->intr != 0 : 0;
 #pragma omp barrier
       reduce_spills(s, t);
       half_kick(s, td->row_begin, td->row_end);
@@ -327,11 +342,16 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
         ke_prev = ke;
         epot_prev = epot;
         work_prev = work;
+        if (t == 0) s->last_good = stepno;
 #pragma omp barrier /* nobody overwrites td->ke/epot or the wall loads before all read them */
       } else if (t == 0) {
         collect(s, 1);
       }
       if (t == 0) done = step + 1;
+      if (intr_seen) {
+        if (t == 0) stop = STOP_INTR;
+        break;
+      }
     }
   }
   if (stop == STOP_OVERLAP) collect(s, 1); /* that step's loads were not collected */
@@ -354,6 +374,12 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
                        "(now %.3g J); the time step is too large",
                        s->st.steps, s->st.time, s->bd.ke_growth, strikes, s->bd.check_interval,
                        ke_last);
+  case STOP_INTR:
+    s->st.kinetic_energy = dem_sim_kinetic_energy(s);
+    return dem_err_set(err, DEM_EINTERRUPTED,
+                       "step %ld (t = %g s): interrupted after %ld of %ld steps (a clean step "
+                       "boundary: the state may be checkpointed)",
+                       s->st.steps, s->st.time, done, nsteps);
   default:
     break;
   }

@@ -23,6 +23,7 @@ dem_sim *dem_sim_create(dem_err *err) {
   s->sort_every = 10;
   s->need_build = 1;
   s->need_forces = 1;
+  s->last_good = -1;
   dem_breakdown_defaults(&s->bd);
   return s;
 }
@@ -142,6 +143,7 @@ int dem_sim_set_threads(dem_sim *s, int nthreads, dem_err *err) {
     return dem_err_set(err, DEM_EUNSUPPORTED, "threads = %d: libdem was built without OpenMP",
                        nthreads);
 #endif
+  if (nthreads == s->nthreads) return DEM_OK; /* keeps a restored neighbour list */
   s->nthreads = nthreads;
   s->need_build = 1; /* re-partition rows and spill buffers */
   return DEM_OK;
