@@ -18,6 +18,12 @@
 #include "dem/tangential.h"
 
 /* External definitions of the inline kernels (C99 6.7.4). */
+extern inline void dem_tangential_stiffness(const dem_tangential *t, double R, double alpha_eff,
+                                            double m, double *k_out, double *c_out);
+extern inline int dem_tangential_spring(const dem_tangential *t, double xi[3],
+                                        const double n[3], const double v[3], double dt,
+                                        double k, double c, double fn, double f_adh,
+                                        double ft[3]);
 extern inline int dem_tangential_force(const dem_tangential *t, double xi[3], const double n[3],
                                        const double vt[3], double dt, double R,
                                        double alpha_eff, double m, double fn, double f_adh,

@@ -36,7 +36,7 @@
  * w_eps >= dem_rolling_omega_eps(...) one explicit step of the rolling torque alone can
  * bring omega_rel to zero but never reverse it: no chatter, no energy injected.
  *
- * The two per-step kernels are C99 inline definitions (the bulk engine's loop inlines them);
+ * The per-step kernels are C99 inline definitions (the bulk engine's loop inlines them);
  * libdem/src/tangential.c emits their external definitions.
  */
 #ifndef DEM_TANGENTIAL_H
@@ -73,6 +73,62 @@ int dem_tangential_setup(dem_tangential *t, dem_tangential_kind kind, const dem_
 /* From key mu_r (optional, default 0 = none; allowed [0, 1]). */
 int dem_rolling_setup(dem_rolling *r, const dem_params *ps, dem_err *err);
 
+/* Stiffness and sticking-damping coefficient of the spring for a contact:
+ *   k = 8 G* sqrt(R alpha_eff) (Mindlin 3.25; 0 for alpha_eff <= 0) or kt (linear), 0 for none;
+ *   c = eta sqrt(m k) (paper eq 25), N s/m.
+ * Split from dem_tangential_force so that a caller which already has sqrt(R alpha) and
+ * sqrt(m k_n) from its normal law (the engine's Hertz path) can form k and c without new
+ * square roots and call dem_tangential_spring directly. */
+inline void dem_tangential_stiffness(const dem_tangential *t, double R, double alpha_eff,
+                                     double m, double *k_out, double *c_out) {
+  /* The kind is loop-invariant, so these selects are perfectly predicted. */
+  /* (Ternaries, not fmax: without -ffinite-math-only fmax is a library call.) */
+  double ae = alpha_eff > 0.0 ? alpha_eff : 0.0;
+  double k = t->kind == DEM_TANGENTIAL_MINDLIN ? 8.0 * t->G * sqrt(R * ae) : t->kt;
+  k = t->kind == DEM_TANGENTIAL_NONE ? 0.0 : k;
+  *k_out = k;
+  *c_out = t->eta * sqrt(m * k);
+}
+
+/* One step of the spring with given stiffness k (N/m) and sticking damping coefficient
+ * c (N s/m) (dem_tangential_stiffness), for the tangential relative velocity v (m/s, already
+ * in the tangent plane: v . n = 0 up to round-off); the other arguments as
+ * dem_tangential_force. Returns 1 if the contact slid this step, else 0. */
+inline int dem_tangential_spring(const dem_tangential *t, double xi[3], const double n[3],
+                                 const double v[3], double dt, double k, double c,
+                                 double fn, double f_adh, double ft[3]) {
+  /* Rotate into the current tangent plane, keeping |xi|. */
+  double m0 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
+  double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
+  double p[3] = {xi[0] - xn * n[0], xi[1] - xn * n[1], xi[2] - xn * n[2]};
+  double m1 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+  double sc = m1 > 0.0 ? sqrt(m0 / m1) : 0.0; /* xi along n (a 90-degree turn): spring lost */
+  /* The spring increment. */
+  for (int i = 0; i < 3; i++) xi[i] = sc * p[i] + v[i] * dt;
+  /* Coulomb limit with the adhesive contribution (thesis 4.27-4.28, 3.49). */
+  double cap = fn + f_adh;
+  double flim = (t->kind == DEM_TANGENTIAL_NONE ? 0.0 : t->mu) * (cap > 0.0 ? cap : 0.0);
+  double flim2 = flim * flim;
+  /* Spring force k |xi| against the limit, compared squared: the square root (and the
+   * division) are only needed when the contact slides. */
+  double x2 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
+  int slide = k * k * x2 > flim2;
+  if (slide) {
+    /* Sliding: shorten the spring so that k |xi| = F_lim (k = 0 never slides). */
+    double s = flim / (k * sqrt(x2));
+    for (int i = 0; i < 3; i++) xi[i] *= s;
+    c = 0.0; /* damping only while sticking (paper eq 23/25) */
+  }
+  for (int i = 0; i < 3; i++) ft[i] = -k * xi[i] - c * v[i];
+  /* Damping may not lift the total above the limit. */
+  double f2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
+  if (f2 > flim2) {
+    double q = flim / sqrt(f2);
+    for (int i = 0; i < 3; i++) ft[i] *= q;
+  }
+  return slide;
+}
+
 /* One step of the tangential spring.
  *   xi     [3] spring (history), updated
  *   n      [3] unit contact normal (from particle j to particle i)
@@ -89,39 +145,12 @@ int dem_rolling_setup(dem_rolling *r, const dem_params *ps, dem_err *err);
 inline int dem_tangential_force(const dem_tangential *t, double xi[3], const double n[3],
                                 const double vt[3], double dt, double R, double alpha_eff,
                                 double m, double fn, double f_adh, double ft[3]) {
-  /* Stiffness: the kind is loop-invariant, so this select is perfectly predicted. */
-  /* (Ternaries, not fmax: without -ffinite-math-only fmax is a library call.) */
-  double ae = alpha_eff > 0.0 ? alpha_eff : 0.0;
-  double k = t->kind == DEM_TANGENTIAL_MINDLIN ? 8.0 * t->G * sqrt(R * ae) : t->kt;
-  k = t->kind == DEM_TANGENTIAL_NONE ? 0.0 : k;
-  /* Rotate into the current tangent plane, keeping |xi|. */
-  double m0 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
-  double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
-  double p[3] = {xi[0] - xn * n[0], xi[1] - xn * n[1], xi[2] - xn * n[2]};
-  double m1 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-  double sc = m1 > 0.0 ? sqrt(m0 / m1) : 0.0; /* xi along n (a 90-degree turn): spring lost */
-  /* Tangential part of the relative velocity and the spring increment. */
+  double k, c;
+  dem_tangential_stiffness(t, R, alpha_eff, m, &k, &c);
+  /* Tangential part of the relative velocity. */
   double vn = vt[0] * n[0] + vt[1] * n[1] + vt[2] * n[2];
   double v[3] = {vt[0] - vn * n[0], vt[1] - vn * n[1], vt[2] - vn * n[2]};
-  for (int i = 0; i < 3; i++) xi[i] = sc * p[i] + v[i] * dt;
-  /* Coulomb limit with the adhesive contribution (thesis 4.27-4.28, 3.49). */
-  double cap = fn + f_adh;
-  double flim = (t->kind == DEM_TANGENTIAL_NONE ? 0.0 : t->mu) * (cap > 0.0 ? cap : 0.0);
-  double fs = k * sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-  int slide = fs > flim;
-  /* Sliding: shorten the spring so that k |xi| = F_lim (k = 0 never slides: fs = 0). */
-  double s = slide ? flim / fs : 1.0;
-  /* Damping only while sticking (paper eq 23/25). */
-  double c = slide ? 0.0 : t->eta * sqrt(m * k);
-  for (int i = 0; i < 3; i++) {
-    xi[i] *= s;
-    ft[i] = -k * xi[i] - c * v[i];
-  }
-  /* Damping may not lift the total above the limit. */
-  double f2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
-  double q = f2 > flim * flim ? flim / sqrt(f2) : 1.0;
-  for (int i = 0; i < 3; i++) ft[i] *= q;
-  return slide;
+  return dem_tangential_spring(t, xi, n, v, dt, k, c, fn, f_adh, ft);
 }
 
 /* Smallest w_eps (rad/s) for which one explicit step dt of the rolling torque on a body of

@@ -16,8 +16,9 @@
 
 #include "dem/contact.h"
 #include "dem/material.h"
+#include "hertz_kernel.h"
 
-enum { C_ES, C_ETA, C_E };
+enum { C_ES = DEM_HERTZ_C_ES, C_ETA = DEM_HERTZ_C_ETA, C_E = DEM_HERTZ_C_E };
 
 static const dem_coef_spec coefs[] = {
     {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
@@ -52,11 +53,11 @@ static void force(const double *c, const dem_geom *g, double *hist, double alpha
     dem_normal_zero(out);
     return;
   }
-  double sra = sqrt(g->R * alpha);       /* sqrt(R* alpha), m */
-  double k = 2.0 * c[C_ES] * sra;        /* S_n, N/m */
-  out->k = k;
-  out->f_el = (2.0 / 3.0) * k * alpha;   /* 4/3 E* sqrt(R*) alpha^{3/2} */
-  out->f_damp = c[C_ETA] * sqrt(g->m * k) * alpha_dot;
+  dem_hertz_terms t; /* S_n = 2 E* sqrt(R* alpha), f_el = 4/3 E* sqrt(R*) alpha^{3/2} */
+  dem_hertz_eval(c, g->R, g->m, alpha, alpha_dot, &t);
+  out->k = t.k;
+  out->f_el = t.f_el;
+  out->f_damp = t.f_damp;
   out->f = out->f_el + out->f_damp;
   out->f_adh = 0.0;
   out->alpha_t = alpha > 0.0 ? alpha : 0.0; /* contact.h: max(alpha, 0) for Mindlin */

@@ -27,7 +27,25 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../contact/hertz_kernel.h"
 #include "internal.h"
+
+void dem_engine_inter_compile(dem_inter *in) {
+  in->fl = (in->normal.law->init ? DEM_IF_INIT : 0u) |
+           (in->tang.kind != DEM_TANGENTIAL_NONE ? DEM_IF_TANG : 0u) |
+           (in->roll.mu_r > 0.0 ? DEM_IF_ROLL : 0u);
+  in->hz_ct = 0.0;
+  if (in->normal.law == &dem_law_hertz) {
+    in->fl |= DEM_IF_HERTZ;
+    const double Es = in->normal.c[DEM_HERTZ_C_ES];
+    if (in->tang.kind == DEM_TANGENTIAL_MINDLIN && Es > 0.0) {
+      /* k_t = 8 G* sqrt(R* alpha) = (4 G* / E*) S_n (3.25 / 3.14), so
+       * eta_t sqrt(m* k_t) = eta_t sqrt(4 G* / E*) sqrt(m* S_n)  (paper eq 25) */
+      in->fl |= DEM_IF_HZMINDLIN;
+      in->hz_ct = in->tang.eta * sqrt(4.0 * in->tang.G / Es);
+    }
+  }
+}
 
 
 void dem_engine_partition(dem_sim *s) {
@@ -80,6 +98,33 @@ static inline void cross(const double a[3], const double b[3], double c[3]) {
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The paths off the common case (Hertz, no rolling resistance) are kept out of line, so
+ * that they do not take registers from the hot loop. */
+__attribute__((noinline)) static void generic_law(const dem_inter *in, const dem_geom *g,
+                                                  double *h, double alpha, double alpha_dot,
+                                                  dem_normal *out) {
+  if ((in->fl & DEM_IF_INIT) && h[0] == 0.0) dem_contact_init(&in->normal, g, h, NULL);
+  in->normal.law->force(in->normal.c, g, h, alpha, alpha_dot, out);
+}
+
+/* Rolling torque on i (added to tqi) and j (tqj) of a pair in contact, |F_n| = fn_abs. */
+__attribute__((noinline)) static void rolling(const dem_sim *s, const dem_inter *in, size_t i,
+                                              size_t j, const double wi[3], const double wj[3],
+                                              double fn_abs, double ri, double rj, double ir,
+                                              double dt, double tqi[3], double tqj[3]) {
+  const double wrel[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
+  double mr[3];
+  /* regularisation: the relative-rotation inertia (dem/tangential.h) */
+  const double Irel = 1.0 / (s->invI[i] + rj * ir * s->invI[j]);
+  const double weps = dem_rolling_omega_eps(in->roll.mu_r, fn_abs, ri, Irel, dt);
+  dem_rolling_torque(&in->roll, wrel, fn_abs, ri, weps, mr);
+  const double sc = rj / ri;
+  for (int k = 0; k < 3; k++) {
+    tqi[k] += mr[k];
+    tqj[k] -= sc * mr[k];
+  }
 }
 
 void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
@@ -152,9 +197,30 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
       const double vr[3] = {vi[0] - vj[0], vi[1] - vj[1], vi[2] - vj[2]};
       const double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
       const unsigned fl = in->fl;
-      if ((fl & DEM_IF_INIT) && h[0] == 0.0) dem_contact_init(&in->normal, &g, h, NULL);
       dem_normal out;
-      in->normal.law->force(in->normal.c, &g, h, alpha, -vn, &out);
+      double kt = 0.0, ct = 0.0; /* tangential stiffness and damping (DEM_IF_HZMINDLIN) */
+      if (fl & DEM_IF_HERTZ) {
+        /* the common law inline, no call through the table (same kernel as hertz.c) */
+        if (!(alpha > 0.0)) {
+          touch[q] = 0;
+          double *xi = h + hoff;
+          xi[0] = xi[1] = xi[2] = 0.0;
+          continue;
+        }
+        dem_hertz_terms ht;
+        dem_hertz_eval(in->normal.c, g.R, g.m, alpha, -vn, &ht);
+        out.f_el = ht.f_el;
+        out.f_damp = ht.f_damp;
+        out.f = ht.f_el + ht.f_damp;
+        out.k = ht.k;
+        out.f_adh = 0.0;
+        out.alpha_t = alpha;
+        out.contact = 1;
+        kt = 8.0 * in->tang.G * ht.sra; /* Mindlin 3.25 at alpha_t = alpha */
+        ct = in->hz_ct * ht.smk;
+      } else {
+        generic_law(in, &g, h, alpha, -vn, &out);
+      }
       touch[q] = (uint8_t)out.contact;
       if (!out.contact) {
         double *xi = h + hoff;
@@ -176,11 +242,14 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
                               ai * wi[2] + aj * wj[2]};
         double wxn[3];
         cross(ws, n, wxn);
-        /* contact-point relative velocity; dem_tangential_force drops its normal part */
-        const double vt[3] = {vr[0] - wxn[0], vr[1] - wxn[1], vr[2] - wxn[2]};
+        /* tangential part of the contact-point relative velocity: (w_s x n) . n = 0, so
+         * (v_c . n) = (v_r . n) = vn */
+        const double vt[3] = {vr[0] - vn * n[0] - wxn[0], vr[1] - vn * n[1] - wxn[1],
+                              vr[2] - vn * n[2] - wxn[2]};
         double ft[3], nxf[3];
-        dem_tangential_force(&in->tang, h + hoff, n, vt, dt, g.R, out.alpha_t,
-                             g.m, out.f, out.f_adh, ft);
+        if (!(fl & DEM_IF_HZMINDLIN))
+          dem_tangential_stiffness(&in->tang, g.R, out.alpha_t, g.m, &kt, &ct);
+        dem_tangential_spring(&in->tang, h + hoff, n, vt, dt, kt, ct, out.f, out.f_adh, ft);
         F[0] += ft[0];
         F[1] += ft[1];
         F[2] += ft[2];
@@ -190,19 +259,8 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
           tqj[k] = -aj * nxf[k];
         }
       }
-      if ((fl & DEM_IF_ROLL) && out.contact) {
-        const double wrel[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
-        double mr[3];
-        /* regularisation: the relative-rotation inertia (dem/tangential.h) */
-        const double Irel = 1.0 / (s->invI[i] + rj * ir * s->invI[j]);
-        const double weps = dem_rolling_omega_eps(in->roll.mu_r, fabs(out.f), ri, Irel, dt);
-        dem_rolling_torque(&in->roll, wrel, fabs(out.f), ri, weps, mr);
-        const double sc = rj / ri;
-        for (int k = 0; k < 3; k++) {
-          tqi[k] += mr[k];
-          tqj[k] -= sc * mr[k];
-        }
-      }
+      if ((fl & DEM_IF_ROLL) && out.contact)
+        rolling(s, in, i, j, wi, wj, fabs(out.f), ri, rj, ir, dt, tqi, tqj);
       for (int k = 0; k < 3; k++) {
         fi[k] += F[k];
         ti[k] += tqi[k];

@@ -17,8 +17,14 @@ typedef struct dem_inter {
   dem_tangential tang;      /* kind NONE: no tangential force */
   dem_rolling roll;         /* mu_r = 0: no rolling torque */
   unsigned fl;              /* DEM_IF_* below, read once per contact by the force loop */
+  double hz_ct;             /* DEM_IF_HZMINDLIN: eta_t sqrt(4 G* / E*), so that the tangential
+                               damping eta_t sqrt(m* k_t) = hz_ct sqrt(m* S_n) (force.c) */
 } dem_inter;
-enum { DEM_IF_INIT = 1u, DEM_IF_TANG = 2u, DEM_IF_ROLL = 4u };
+/* HERTZ: the law is `hertz`, evaluated inline (contact/hertz_kernel.h) instead of through
+ * the table; HZMINDLIN: and the tangential spring is Mindlin, its stiffness and damping
+ * formed from the Hertz terms. */
+enum { DEM_IF_INIT = 1u, DEM_IF_TANG = 2u, DEM_IF_ROLL = 4u, DEM_IF_HERTZ = 8u,
+       DEM_IF_HZMINDLIN = 16u };
 
 typedef struct dem_wall {
   dem_wall_spec spec;       /* current geometry (p advances with v) */
@@ -131,6 +137,8 @@ void dem_engine_servo(dem_sim *s);
 int dem_engine_walls_moved(const dem_sim *s);
 
 /* force.c */
+/* Set in->fl (DEM_IF_*) and the derived constants from in->normal, in->tang, in->roll. */
+void dem_engine_inter_compile(dem_inter *in);
 void dem_engine_pair_forces(dem_sim *s, dem_tdata *td);
 void dem_engine_partition(dem_sim *s);
 int dem_engine_spill_reserve(dem_sim *s, dem_err *err);

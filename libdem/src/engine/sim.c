@@ -99,9 +99,7 @@ int dem_sim_set_interaction(dem_sim *s, int a, int b, const dem_contact *normal,
   if (t) in.tang = *t;
   else in.tang.kind = DEM_TANGENTIAL_NONE;
   if (r) in.roll = *r;
-  in.fl = (normal->law->init ? DEM_IF_INIT : 0u) |
-          (in.tang.kind != DEM_TANGENTIAL_NONE ? DEM_IF_TANG : 0u) |
-          (in.roll.mu_r > 0.0 ? DEM_IF_ROLL : 0u);
+  dem_engine_inter_compile(&in);
   s->inter[a][b] = in;
   s->inter[b][a] = in;
   return DEM_OK;
