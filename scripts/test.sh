@@ -12,6 +12,8 @@ cmake --build build -j "$JOBS"
 if [ "${DEM_SKIP_SANITIZE:-0}" != "1" ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DDEM_WERROR=ON -DDEM_SANITIZE=ON
   cmake --build build-asan -j "$JOBS"
+  # Sanitized code runs 4-10x slower: Check's per-test timeouts are scaled to match.
   (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+     CK_TIMEOUT_MULTIPLIER=6 \
      ctest --output-on-failure -j "$JOBS" -LE slow)
 fi
