@@ -126,4 +126,12 @@ int dem_scene_psd_table(dem_scene_psd psd, const double **dd, const double **fra
  * h = D/2, then pi D^2/4 (thesis 2.7-2.9); flat cylinder pi D^2/4; cube D^2. */
 double dem_scene_indent_area(dem_indenter_shape shape, double D, double h);
 
+/* Snapshot DIR/snap_<index>.h5 (x, v, omega, radius, id; attributes time, stage) and the
+ * XDMF index DIR/snapshots.xmf over snapshots 0..count-1 (times, particle counts); both
+ * written to a temporary file and renamed. */
+int dem_scene_write_snapshot(dem_sim *s, const char *dir, int index, double t,
+                             const char *stage, dem_err *err);
+int dem_scene_write_xdmf(const char *dir, int count, const double *times, const size_t *n,
+                         dem_err *err);
+
 #endif
