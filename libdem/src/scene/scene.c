@@ -435,7 +435,7 @@ int dem_scene_settle(dem_scene *sc, dem_err *err) {
                          "scene settle: kinetic energy per particle %.3g J still above %.3g J "
                          "(settle_ke = %g m g d) after settle_max_time = %g s",
                          kep, ke_lim, c->settle_ke, c->settle_max_time);
-    if ((rc = chunk(sc, t / c->settle_max_time, err))) return rc;
+    if ((rc = chunk(sc, -1.0, err))) return rc; /* no estimate of the remaining time */
   }
   bed_measure(sc);
   return DEM_OK;
