@@ -313,6 +313,7 @@ static void tl_force(const double *c, const dem_geom *g, double *hist, double al
   out->f_el = out->f = c[TL_K] * alpha - c[TL_F0];
   out->f_damp = 0.0;
   out->f_adh = c[TL_F0];
+  out->alpha_t = alpha > 0.0 ? alpha : 0.0;
   out->contact = 1;
 }
 static double tl_kref(const double *c, const dem_geom *g, double v) {
@@ -410,6 +411,7 @@ static void wb_force(const double *c, const dem_geom *g, double *hist, double al
     out->f = out->f_el = c[WB_KE] * (alpha - ap);
   }
   out->f_damp = out->f_adh = 0.0;
+  out->alpha_t = alpha > 0.0 ? alpha : 0.0;
   out->contact = 1;
 }
 static double wb_kref(const double *c, const dem_geom *g, double v) {
@@ -483,6 +485,7 @@ static void gain_force(const double *c, const dem_geom *g, double *hist, double 
   out->k = 2.0 * c[TL_K];
   out->f = out->f_el = (alpha_dot < 0.0 ? 2.0 : 1.0) * c[TL_K] * alpha;
   out->f_damp = out->f_adh = 0.0;
+  out->alpha_t = alpha > 0.0 ? alpha : 0.0;
   out->contact = 1;
 }
 static const dem_law gain_law = {"test-gain", "test", "tests", 3, tl_coefs, 1,

@@ -19,10 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../libdem/src/contact/jkr_core.h"
 #include "dem/contact.h"
 #include "dem/error.h"
-#include "dem/jkr_radius.h"
+#include "dem/jkr.h"
 #include "dem/material.h"
 #include "dem/params.h"
 
@@ -182,6 +181,14 @@ static void walk(path_ctx *p, double a, double b, int n, double rate) {
     ck_assert_msg(fabs(out.f - out.f_el - out.f_damp) <= 1e-12 * (fabs(out.f_el) + fabs(out.f_damp)),
                   "law '%s': f != f_el + f_damp", name);
     ck_assert_msg(out.f_adh >= 0.0, "law '%s': f_adh < 0", name);
+    /* Mindlin overlap (contact.h): finite, >= 0, and 0 without contact. */
+    ck_assert_msg(isfinite(out.alpha_t) && out.alpha_t >= 0.0,
+                  "law '%s' at alpha = %g: alpha_t = %g", name, alpha, out.alpha_t);
+    ck_assert_msg(out.contact || out.alpha_t == 0.0, "law '%s': alpha_t without contact", name);
+    if (!(p->ct->law->flags & DEM_LAW_ADHESIVE) && out.contact)
+      ck_assert_msg(out.alpha_t == (alpha > 0.0 ? alpha : 0.0),
+                    "law '%s' at alpha = %g: alpha_t = %g, not max(alpha, 0)", name, alpha,
+                    out.alpha_t);
     ck_assert_msg(out.contact == 0 || out.contact == 1, "law '%s': contact flag", name);
     ck_assert_msg(out.contact || (out.f == 0.0 && out.f_el == 0.0),
                   "law '%s' at alpha = %g: force %g without contact", name, alpha, out.f);
@@ -249,7 +256,7 @@ static dem_normal ev(const dem_contact *ct, const dem_geom *g, double *hist, dou
   return n;
 }
 
-/* JKR scales computed here from the sources, independently of jkr_core.h. */
+/* JKR scales computed here from the sources, independently of dem/jkr.h. */
 typedef struct {
   double Es, fc, alpha_f, alpha_0, alpha_c, w_adh;
 } jkr_ref;
@@ -306,7 +313,17 @@ START_TEST(test_jkr_root) {
     if (err > worst_cbrt) worst_cbrt = err;
   }
   ck_assert_msg(worst_cbrt < 1.0, "cube root error %g ulp", worst_cbrt);
-  /* Landmarks of jkr_core.h exactly. */
+  /* Its first layer (two Halley steps), used inside dem_jkr_root before the Newton step on
+   * the quartic. */
+  double worst_h = 0.0;
+  for (double lx = log(1.0 / 9.0); lx < log(1e40); lx += 1e-3) {
+    double x = exp(lx);
+    long double r = cbrtl((long double)x);
+    double err = (double)(fabsl((long double)dem_jkr_cbrt_halley(x) - r) / r) / DBL_EPSILON;
+    if (err > worst_h) worst_h = err;
+  }
+  ck_assert_msg(worst_h < 32.0, "two-Halley cube root error %g ulp", worst_h);
+  /* Landmarks of dem/jkr.h exactly. */
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(0.0)), -8.0 / 9.0, 4e-16);
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(-1.0 / 3.0)), -1.0, 1e-8);
   ck_assert_double_eq_tol(dem_jkr_fhat(dem_jkr_root(2.0 / 3.0 * cbrt(2.0))), 0.0, 4e-15);
@@ -319,9 +336,11 @@ START_TEST(test_jkr_root) {
 END_TEST
 
 START_TEST(test_jkr_cross_check) {
-  /* The law's force against the independent JKR helper of dem/jkr_radius.h (written for
-   * thornton-ning, another scaling, libm cbrt and a Newton polish): F(a(alpha)) along the
-   * whole stable branch, to round-off. */
+  /* The law's force (dimensionless form F = f_c (s^6 - 2 s^3) with cached scales) against
+   * the dimensional helpers of dem/jkr.h (eq 3.41 evaluated at the radius a(alpha) of 3.42,
+   * the form thornton-ning's tests use): F(a(alpha)) along the whole stable branch, to
+   * round-off. (Before the two JKR solvers were merged this compared two independent
+   * solvers; test_jkr_root checks the one left against extended precision.) */
   dem_params ps;
   jkr_params(&ps);
   dem_contact ct;
@@ -342,6 +361,40 @@ START_TEST(test_jkr_cross_check) {
     if (d > worst) worst = d;
   }
   ck_assert_msg(worst < 1e-11, "largest difference %g f_c", worst);
+}
+END_TEST
+
+START_TEST(test_jkr_alpha_t) {
+  /* dem_normal.alpha_t = a^2/R* for jkr and jkr-modified, at points where the contact
+   * radius is known in closed form: jump-in alpha = 0, a^3 = 2 pi Gamma R*^2 / E* (paper
+   * B5); zero force alpha_0, a^3 = 9/2 pi Gamma R*^2 / E* (B8); pull-off (jkr only),
+   * a = a_c, a_c^3 = 9 pi Gamma R*^2 / (8 E*) (thesis 3.57); and along the curve against
+   * dem_jkr_radius. */
+  const char *names[] = {"jkr", "jkr-modified"};
+  for (int l = 0; l < 2; l++) {
+    dem_params ps;
+    jkr_params(&ps);
+    dem_contact ct;
+    setup_law(&ct, names[l], &ps);
+    dem_geom g = ref_geom();
+    jkr_ref j = jkr_reference(g.R);
+    double R = g.R, G = GAMMA_REF, Es = j.Es;
+    double hist[DEM_LAW_NHIST_MAX] = {0};
+    double a0 = cbrt(2.0 * M_PI * G * R * R / Es), az = cbrt(4.5 * M_PI * G * R * R / Es);
+    double ac = cbrt(9.0 * M_PI * G * R * R / (8.0 * Es));
+    ck_assert_double_eq_tol(ev(&ct, &g, hist, 0.0).alpha_t, a0 * a0 / R, 1e-13 * a0 * a0 / R);
+    ck_assert_double_eq_tol(ev(&ct, &g, hist, j.alpha_0).alpha_t, az * az / R,
+                            1e-13 * az * az / R);
+    if (l == 0)
+      ck_assert_double_eq_tol(ev(&ct, &g, hist, j.alpha_c).alpha_t, ac * ac / R,
+                              1e-7 * ac * ac / R); /* near the minimum: a(alpha) ill-posed */
+    for (double t = 0.0; t < 1.0; t += 0.01) {
+      double al = (l == 0 ? 0.999 * j.alpha_f : 0.0) + t * t * 50.0 * j.alpha_0;
+      double a = dem_jkr_radius(R, Es, G, al), at = ev(&ct, &g, hist, al).alpha_t;
+      ck_assert_msg(fabs(at - a * a / R) <= 1e-13 * a * a / R, "%s alpha %g: alpha_t %g a^2/R %g",
+                    names[l], al, at, a * a / R);
+    }
+  }
 }
 END_TEST
 
@@ -706,6 +759,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_jkr_cross_check);
   tcase_add_test(tc, test_jkr_curve);
   tcase_add_test(tc, test_jkr_work_of_adhesion);
+  tcase_add_test(tc, test_jkr_alpha_t);
   tcase_add_test(tc, test_jkr_modified_curve);
   tcase_add_test(tc, test_jkr_damping);
   tcase_add_test(tc, test_jkr_errors);

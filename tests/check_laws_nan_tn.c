@@ -1,5 +1,5 @@
 /* Tests of the `nan` (improved linear, second seed) and `thornton-ning` laws, the nan
- * correlations (dem/nan.h) and the JKR radius helper (dem/jkr_radius.h).
+ * correlations (dem/nan.h) and the JKR geometry (dem/jkr.h).
  *
  * Expected values are computed here from the source equations, independently of the library
  * code paths where possible (e.g. the JKR force from the radius, the linear lines from their
@@ -15,7 +15,7 @@
 
 #include "dem/contact.h"
 #include "dem/error.h"
-#include "dem/jkr_radius.h"
+#include "dem/jkr.h"
 #include "dem/material.h"
 #include "dem/nan.h"
 #include "dem/params.h"
@@ -43,27 +43,35 @@ static void af_params(dem_params *ps) {
 /* ---------------------------------------------------------------- JKR radius helper ---- */
 
 START_TEST(test_jkr_quartic) {
-  /* Residual of x^4 - x = q at round-off over the whole range, including the breakage end. */
-  const double qs[] = {DEM_JKR_QMIN, DEM_JKR_QMIN + 1e-14, DEM_JKR_QMIN + 1e-9, -0.4, -0.2,
-                       -1e-9, 0.0, 1e-12, 0.013, 0.5, 1.0, 2.385, 17.0, 1e3, 1e6, 3e7, 1e12};
-  for (size_t i = 0; i < sizeof qs / sizeof qs[0]; i++) {
-    double q = qs[i], x = dem_jkr_quartic_root(q);
-    ck_assert(isfinite(x));
-    ck_assert(x >= cbrt(0.25) * (1 - 1e-7)); /* the stable branch */
-    double scale = fmax(x * x * x * x, fmax(x, fabs(q)));
-    ck_assert_msg(fabs(x * x * x * x - x - q) <= 8 * DBL_EPSILON * scale,
-                  "q = %g: residual %g", q, x * x * x * x - x - q);
+  /* Residual of s^4 - (4/3) s = A at round-off over the whole range, including the breakage
+   * end. (Written first for the x^4 - x = q form of the former dem/jkr_radius.h solver; the
+   * points are the same, A = (16/9)^(2/3) q, since s = (16/9)^(1/6) x.) */
+  const double L4 = cbrt(16.0 / 9.0) * cbrt(16.0 / 9.0);
+  const double As[] = {DEM_JKR_AF, DEM_JKR_AF + 1e-14, DEM_JKR_AF + 1e-9, -0.4 * L4,
+                       -0.2 * L4, -1e-9 * L4, 0.0, 1e-12 * L4, 0.013 * L4, 0.5 * L4, 1.0 * L4,
+                       2.385 * L4, 17.0 * L4, 1e3 * L4, 1e6 * L4, 3e7 * L4, 1e12 * L4};
+  for (size_t i = 0; i < sizeof As / sizeof As[0]; i++) {
+    double A = As[i], s = dem_jkr_root(A);
+    ck_assert(isfinite(s));
+    ck_assert(s >= DEM_JKR_SF * (1 - 1e-7)); /* the stable branch */
+    double scale = fmax(s * s * s * s, fmax(4.0 / 3.0 * s, fabs(A)));
+    ck_assert_msg(fabs(s * s * s * s - 4.0 / 3.0 * s - A) <= 8 * DBL_EPSILON * scale,
+                  "A = %g: residual %g", A, s * s * s * s - 4.0 / 3.0 * s - A);
   }
-  ck_assert_double_eq_tol(dem_jkr_quartic_root(0.0), 1.0, 1e-15);
-  ck_assert_double_eq_tol(dem_jkr_quartic_root(DEM_JKR_QMIN), cbrt(0.25), 1e-7);
-  ck_assert(isnan(dem_jkr_quartic_root(DEM_JKR_QMIN - 1e-12)));
-  /* Dense sweep: relative residual in x (the root's own conditioning) at round-off. */
+  ck_assert_double_eq_tol(dem_jkr_root(0.0), cbrt(4.0 / 3.0), 1e-15);
+  ck_assert_double_eq_tol(dem_jkr_root(DEM_JKR_AF), cbrt(1.0 / 3.0), 1e-7);
+  ck_assert(isnan(dem_jkr_root(DEM_JKR_AF - 1e-12)));
+  /* Dense sweep: relative residual in s (the root's own conditioning) at round-off. The
+   * residual is evaluated in long double: 4/3 is not a double, and fl(4/3) alone would move
+   * the root by 7e-17 s / (4 s^3 - 4/3), 1.2e-14 at the first points (the x^4 - x form had
+   * exact coefficients, so double sufficed there). */
   double worst = 0.0;
   for (int i = 1; i < 20000; i++) {
-    double q = DEM_JKR_QMIN + 1e-3 * i * i / 20000.0 * 50.0;
-    double x = dem_jkr_quartic_root(q), r = x * x * x * x - x - q;
-    double dx = fabs(r) / (4 * x * x * x - 1); /* forward error estimate */
-    worst = fmax(worst, dx / x);
+    double A = DEM_JKR_AF + L4 * 1e-3 * i * i / 20000.0 * 50.0;
+    double s = dem_jkr_root(A);
+    long double S = s, r = S * S * S * S - 4.0L / 3.0L * S - A;
+    double ds = (double)(fabsl(r) / (4 * S * S * S - 4.0L / 3.0L)); /* forward error estimate */
+    worst = fmax(worst, ds / s);
   }
   ck_assert_msg(worst < 1e-14, "worst forward error %g", worst);
 }
@@ -533,6 +541,7 @@ START_TEST(test_tn_path) {
   /* 2. elastic JKR loading with R* up to alpha_y */
   double al = 0.7 * aly, a = dem_jkr_radius(R, Es, G, al);
   REL(at(&L, al).f, 4 * Es * a * a * a / (3 * R) - sqrt(8 * M_PI * G * Es * a * a * a), 1e-13);
+  REL(at(&L, al).alpha_t, a * a / R, 1e-13); /* Mindlin overlap a^2/R* (contact.h) */
   /* 3. unloading before yield: JKR pull-off -f_c, breakage at alpha_f with -5/9 f_c */
   double ac = cbrt(9 * M_PI * G * R * R / (8 * Es));
   REL(at(&L, dem_jkr_alpha(R, Es, G, ac)).f, -fc, 1e-12);
@@ -595,7 +604,11 @@ START_TEST(test_tn_path) {
   /* 8. breakage, then no force until alpha_c0; re-contact at alpha_c0 with -8/9 f_cp */
   ck_assert_int_eq(at(&L, afp - 1e-9 * fabs(afp - ac0)).contact, 0);
   ck_assert_int_eq(at(&L, 0.5 * (afp + ac0)).contact, 0);
-  n = at(&L, ac0);
+  /* (at the law's own alpha_c0, checked here against the independent value: the two
+   * formulas of R_p, (3.58) here and f_c s^6 / (F + 2 f_c s^3) in the law, may differ in
+   * the last bit, and the threshold is sharp) */
+  REL(L.h[2], ac0, 1e-12);
+  n = at(&L, L.h[2]);
   ck_assert_int_eq(n.contact, 1);
   REL(n.f, -8.0 / 9 * fcp, 1e-12);
   /* 9. reloading to alpha_max then beyond: continuous onto the plastic branch */

@@ -63,6 +63,8 @@ typedef struct dem_normal {
   double f_damp;/* N, the viscous damping part (> 0 opposes approach) */
   double k;     /* N/m, instantaneous stiffness of the branch in use (damping, time step) */
   double f_adh; /* N, >= 0: adhesive addition to the Coulomb sliding limit, mu (F_n + f_adh) */
+  double alpha_t; /* m, overlap at which the Mindlin stiffness 8 G* sqrt(R* alpha_t) is evaluated:
+                     a^2/R* for JKR-type laws (contact radius a), max(alpha, 0) otherwise */
   int contact;  /* 1 if the surfaces are in (adhesive or compressive) contact after the call */
 } dem_normal;
 
@@ -143,7 +145,7 @@ double dem_damping_restitution_hertz(double eta, int clipped);
 
 /* Fill out for "no contact". */
 static inline void dem_normal_zero(dem_normal *out) {
-  out->f = out->f_el = out->f_damp = out->k = out->f_adh = 0.0;
+  out->f = out->f_el = out->f_damp = out->k = out->f_adh = out->alpha_t = 0.0;
   out->contact = 0;
 }
 

@@ -23,10 +23,11 @@
  * of the pair about n itself is not followed (xi keeps its direction in space).
  *
  * Stiffness: constant k_t (linear), or Mindlin no-slip k_t = 8 G* sqrt(R* alpha) (3.25)
- * applied to the total spring, F = -k_t(alpha) xi. With alpha <= 0 (adhesive contact under
- * tension) the Mindlin stiffness is evaluated at the contact radius the law implies; callers
- * pass alpha_eff = a^2/R* >= 0 for it (alpha_eff <= 0 gives k_t = 0: no tangential force,
- * the spring keeps accumulating displacement until stiffness returns).
+ * applied to the total spring, F = -k_t(alpha) xi. Callers pass alpha_eff = n.alpha_t, the
+ * overlap the normal law reports for it (dem_normal.alpha_t, contact.h): a^2/R* for JKR-type
+ * laws, so that k_t = 8 G* a at the law's contact radius a, also at alpha <= 0 (adhesive
+ * contact under tension); max(alpha, 0) for the others. alpha_eff <= 0 gives k_t = 0: no
+ * tangential force, the spring keeps accumulating displacement until stiffness returns.
  *
  * Rolling resistance (physics notes; constant directional torque, the kind of the
  * commercial code of the thesis):  M_r = -mu_r |F_n| R_i omega_rel / |omega_rel|,
@@ -78,7 +79,8 @@ int dem_rolling_setup(dem_rolling *r, const dem_params *ps, dem_err *err);
  *   vt     [3] relative velocity of i with respect to j at the contact point (m/s); its
  *              normal component, if any, is ignored
  *   dt     time step (s)
- *   R, alpha_eff  reduced radius and overlap for the Mindlin stiffness (m)
+ *   R, alpha_eff  reduced radius and overlap for the Mindlin stiffness (m): pass the
+ *                 normal law's dem_normal.alpha_t
  *   m      reduced mass (kg) for damping
  *   fn, f_adh     normal force (N, > 0 repulsive; pass dem_normal.f) and the law's adhesive
  *                 contribution (N, dem_normal.f_adh)

@@ -1,8 +1,8 @@
 /* `jkr`: full JKR elastic-adhesive contact (thesis section 3.4.3.1, eqs 3.40-3.42;
  * paper Appendix B, eqs B1-B11), with restitution-based viscous damping.
  *
- * The contact radius a follows from the overlap through eq (3.42); jkr_core.h solves it in
- * closed form and derives the landmarks. Branches (history word: 0 apart, 1 in contact):
+ * The contact radius a follows from the overlap through eq (3.42); dem/jkr.h (the solver
+ * shared with `thornton-ning`) solves it in closed form and derives the landmarks. Branches (history word: 0 apart, 1 in contact):
  *
  *   apart, alpha <  0:                 no force (the surfaces approach without attraction)
  *   apart, alpha >= 0:                 the contact forms: F jumps to -8/9 f_c (jump-in)
@@ -27,7 +27,8 @@
 
 #include "dem/contact.h"
 #include "dem/material.h"
-#include "jkr_core.h"
+#include "dem/jkr.h"
+#include "jkr_law.h"
 
 const dem_coef_spec dem_jkrlaw_coefs[] = {
     {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
@@ -68,8 +69,9 @@ void dem_jkrlaw_force(const double *c, const dem_geom *g, double *hist, double a
     /* Jump-in at alpha = 0 (thesis 3.4.3.1): cache the scales of this contact. */
     double dc;
     hist[DEM_HIST_STATE] = 1.0;
-    dem_jkr_scales(c[DEM_JKR_C_GAMMA], c[DEM_JKR_C_ES], g->R, &hist[DEM_JKR_H_FC], &dc);
+    dem_jkr_scales(c[DEM_JKR_C_GAMMA], c[DEM_JKR_C_ES], g->R, &hist[DEM_JKR_H_FC], NULL, &dc);
     hist[DEM_JKR_H_IDC] = 1.0 / dc;
+    hist[DEM_JKR_H_DC] = dc;
   }
   double fc = hist[DEM_JKR_H_FC], idc = hist[DEM_JKR_H_IDC];
   double A = alpha * idc;
@@ -86,6 +88,8 @@ void dem_jkrlaw_force(const double *c, const dem_geom *g, double *hist, double a
   out->f_damp = c[DEM_JKR_C_ETA] > 0.0 ? c[DEM_JKR_C_ETA] * sqrt(g->m * k) * alpha_dot : 0.0;
   out->f = out->f_el + out->f_damp;
   out->f_adh = 2.0 * fc;
+  double s2 = s * s;
+  out->alpha_t = s2 * s2 * hist[DEM_JKR_H_DC]; /* a^2/R* = delta_c s^4 (dem/jkr.h) */
   out->contact = 1;
 }
 
@@ -95,7 +99,7 @@ void dem_jkrlaw_force(const double *c, const dem_geom *g, double *hist, double a
  * stiffness at alpha_0. */
 double dem_jkrlaw_kref(const double *c, const dem_geom *g, double v) {
   double Es = c[DEM_JKR_C_ES], fc, dc;
-  dem_jkr_scales(c[DEM_JKR_C_GAMMA], Es, g->R, &fc, &dc);
+  dem_jkr_scales(c[DEM_JKR_C_GAMMA], Es, g->R, &fc, NULL, &dc);
   double ahz = pow(15.0 * g->m * v * v / (16.0 * Es * sqrt(g->R)), 0.4);
   double a0 = (2.0 / 3.0) * cbrt(2.0) * dc;
   return (fc / dc) * dem_jkr_khat(dem_jkr_root((ahz + a0) / dc));

@@ -1,7 +1,7 @@
 /* `jkr-modified`: the JKR variant of thesis section 5.1.1 (Fig 5.1), used with Hertz-Mindlin
  * for the bulk simulations of chapter 5.
  *
- * As `jkr` (jkr.c, jkr_core.h): the contact forms at alpha = 0 with F = -8/9 f_c and follows
+ * As `jkr` (jkr.c, jkr_law.h, dem/jkr.h): the contact forms at alpha = 0 with F = -8/9 f_c and follows
  * the JKR curve (thesis 3.41-3.42) in compression; but on unloading it breaks as soon as the
  * overlap becomes negative ("the contact for this model breaks once the overlap becomes
  * zero"), so the tensile stretch alpha_f < alpha < 0 of full JKR, and the work of adhesion
@@ -10,7 +10,7 @@
  * sticking). Coefficients, damping and the sliding limit mu (F_n + 2 f_c) are those of `jkr`.
  */
 #include "dem/contact.h"
-#include "jkr_core.h"
+#include "jkr_law.h"
 
 static void force(const double *c, const dem_geom *g, double *hist, double alpha,
                   double alpha_dot, dem_normal *out) {

@@ -142,6 +142,7 @@ static void force(const double *c, const dem_geom *g, double *hist, double alpha
   out->f_damp = c[DEM_LUD_ETA] * sqrt(g->m * k) * alpha_dot;
   out->f = out->f_el + out->f_damp;
   out->f_adh = kc * alpha + c[DEM_LUD_F0];
+  out->alpha_t = alpha > 0.0 ? alpha : 0.0; /* contact.h: max(alpha, 0) for Mindlin */
   out->contact = 1;
 }
 

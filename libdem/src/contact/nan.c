@@ -222,6 +222,7 @@ static void force(const double *c, const dem_geom *g, double *h, double alpha, d
   out->f_damp = c[C_ETA] * beta * sqrt(g->m * k) * alpha_dot;
   out->f = f + out->f_damp;
   out->f_adh = h[H_FCP]; /* sliding limit mu (f + f_cp) >= 0 on every branch (see docs) */
+  out->alpha_t = alpha > 0.0 ? alpha : 0.0; /* contact.h: max(alpha, 0) for Mindlin */
   out->contact = 1;
 }
 

@@ -184,6 +184,7 @@ static void force(const double *c, const dem_geom *g, double *hist, double alpha
   out->f_damp = c[DEM_PSS_ETA] * sqrt(g->m * k) * alpha_dot;
   out->f = out->f_el + out->f_damp;
   out->f_adh = fmax(0.0, c[DEM_PSS_KCP] * alpha + f0p - fce); /* (4.28) */
+  out->alpha_t = alpha > 0.0 ? alpha : 0.0; /* contact.h: max(alpha, 0) for Mindlin */
   out->contact = 1;
 }
 

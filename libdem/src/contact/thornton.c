@@ -118,6 +118,7 @@ static void force(const double *c, const dem_geom *g, double *hist, double alpha
   out->f_damp = c[C_ETA] * sqrt(g->m * k) * alpha_dot;
   out->f = out->f_el + out->f_damp;
   out->f_adh = 0.0;
+  out->alpha_t = alpha > 0.0 ? alpha : 0.0; /* contact.h: max(alpha, 0) for Mindlin */
   out->contact = 1;
 }
 

@@ -27,17 +27,17 @@
 #include <math.h>
 
 #include "dem/contact.h"
-#include "dem/jkr_radius.h"
+#include "dem/jkr.h"
 #include "dem/material.h"
 
 enum { C_ES, C_GAMMA, C_PY, C_ETA, C_K1, C_K2 };
 
-/* History. Every JKR curve of radius rho is used in the dimensionless form of
- * dem/jkr_radius.h: with A0 = (2 pi Gamma rho^2 / E*)^(1/3) (the jump-in radius) and
- * alpha_s = A0^2 / rho,
- *   alpha = alpha_s (x^4 - x),  a = A0 x^2,  F = f_c(rho) (16 x^6 - 24 x^3) / 9,
- *   dF/dalpha = f_c(rho) (8/3) x^2 (4x^3 - 3) / (alpha_s (4x^3 - 1)),   f_c = 1.5 pi Gamma rho,
- * (x = 1: jump-in, -8/9 f_c; x^3 = 3/4: pull-off, -f_c; x^3 = 1/4: breakage, -5/9 f_c), so
+/* History. Every JKR curve of radius rho is used in the dimensionless form of dem/jkr.h
+ * (the solver shared with `jkr`): with a_c = (9 pi Gamma rho^2 / (8 E*))^(1/3) and
+ * delta_c = a_c^2 / rho,
+ *   alpha = delta_c (s^4 - 4/3 s),  a = a_c s^2,  F = f_c(rho) (s^6 - 2 s^3),
+ *   dF/dalpha = (f_c(rho) / delta_c) (9/2) s^2 (s^3 - 1) / (3 s^3 - 1),  f_c = 1.5 pi Gamma rho,
+ * (s^3 = 4/3: jump-in, -8/9 f_c; s = 1: pull-off, -f_c; s^3 = 1/3: breakage, -5/9 f_c), so
  * that an evaluation costs one quartic solve and no further roots; the scales are cached. */
 enum {
   H_STATE, /* 0 fresh, 1 in contact, 2 separated after breakage */
@@ -51,11 +51,11 @@ enum {
   H_A,     /* contact radius at the last call, m (diagnostic) */
   H_FCP,   /* f_cp = 1.5 pi Gamma R_p, N */
   H_AF,    /* breakage overlap of the current curve, m */
-  H_A0P,   /* A0 of the R_p curve, m */
-  H_IASP,  /* 1 / alpha_s of the R_p curve, 1/m */
-  H_A0S,   /* A0 of the R* curve, m */
-  H_SA0S,  /* sqrt(A0 of the R* curve), m^1/2 */
-  H_IASS,  /* 1 / alpha_s of the R* curve, 1/m */
+  H_ACP,   /* a_c of the R_p curve, m */
+  H_IDCP,  /* 1 / delta_c of the R_p curve, 1/m */
+  H_ACS,   /* a_c of the R* curve, m */
+  H_SACS,  /* sqrt(a_c of the R* curve), m^1/2 */
+  H_IDCS,  /* 1 / delta_c of the R* curve, 1/m */
   H_N
 };
 enum { ST_FRESH = 0, ST_CONTACT = 1, ST_APART = 2 };
@@ -138,12 +138,11 @@ static int yield_point(const double *c, const dem_geom *g, double *ay, double *a
 
 /* Set the R_p curve's cached scales and breakage overlap (alpha_c0 already set). */
 static void set_curve(const double *c, double *h, double rp) {
-  double a0 = cbrt(2.0 * M_PI * c[C_GAMMA] * rp * rp / c[C_ES]), as = a0 * a0 / rp;
+  double dc;
+  dem_jkr_scales(c[C_GAMMA], c[C_ES], rp, &h[H_FCP], &h[H_ACP], &dc); /* f_cp: (3.59) */
   h[H_RP] = rp;
-  h[H_A0P] = a0;
-  h[H_IASP] = 1.0 / as;
-  h[H_FCP] = 1.5 * M_PI * c[C_GAMMA] * rp; /* (3.59) */
-  h[H_AF] = h[H_AC0] + DEM_JKR_QMIN * as;  /* breakage, -5/9 f_cp */
+  h[H_IDCP] = 1.0 / dc;
+  h[H_AF] = h[H_AC0] + DEM_JKR_AF * dc; /* breakage, -5/9 f_cp */
 }
 
 static int init(const double *c, const dem_geom *g, double *h, dem_err *err) {
@@ -153,9 +152,9 @@ static int init(const double *c, const dem_geom *g, double *h, dem_err *err) {
   h[H_STATE] = ST_FRESH;
   h[H_AC0] = 0.0;
   set_curve(c, h, g->R);
-  h[H_A0S] = h[H_A0P];
-  h[H_SA0S] = sqrt(h[H_A0P]);
-  h[H_IASS] = h[H_IASP];
+  h[H_ACS] = h[H_ACP];
+  h[H_SACS] = sqrt(h[H_ACP]);
+  h[H_IDCS] = h[H_IDCP];
   h[H_AMAX] = aly;
   h[H_FMAX] = dem_jkr_force(g->R, c[C_ES], c[C_GAMMA], ay);
   h[H_AY] = ay;
@@ -177,15 +176,15 @@ static void force(const double *c, const dem_geom *g, double *h, double alpha, d
   double a, f, k;
   if (alpha > h[H_AMAX]) { /* plastic loading on the R* geometry, thesis (3.56) */
     const double R = g->R, fc = 1.5 * M_PI * c[C_GAMMA] * R;
-    double x = dem_jkr_quartic_root(alpha * h[H_IASS]), x3 = x * x * x;
-    a = h[H_A0S] * x * x;
-    double ky = h[H_AY] * c[C_K2] * h[H_SA0S]; /* a_y sqrt(8 pi Gamma E*) sqrt(A0) */
-    f = h[H_P0] + M_PI * c[C_PY] * a * a - ky * x;
-    k = (4.0 * M_PI * c[C_PY] * a * a / x - ky) * h[H_IASS] / (4.0 * x3 - 1.0);
-    /* (3.58): R_p = R* F*_max / (F_max + sqrt(4 f_c F*_max)), F*_max = 16/9 f_c x^6 and
-     * sqrt(4 f_c F*_max) = 24/9 f_c x^3 */
-    double fh = 16.0 / 9.0 * fc * x3 * x3;
-    double rp = R * fh / (f + 24.0 / 9.0 * fc * x3);
+    double s = dem_jkr_root(alpha * h[H_IDCS]), s3 = s * s * s;
+    a = h[H_ACS] * s * s;
+    double ky = h[H_AY] * c[C_K2] * h[H_SACS]; /* a_y sqrt(8 pi Gamma E*) sqrt(a_c) */
+    f = h[H_P0] + M_PI * c[C_PY] * a * a - ky * s;
+    k = (4.0 * M_PI * c[C_PY] * a * a / s - ky) * h[H_IDCS] / (4.0 * s3 - 4.0 / 3.0);
+    /* (3.58): R_p = R* F*_max / (F_max + sqrt(4 f_c F*_max)), F*_max = f_c s^6 and
+     * sqrt(4 f_c F*_max) = 2 f_c s^3 */
+    double fh = fc * s3 * s3;
+    double rp = R * fh / (f + 2.0 * fc * s3);
     h[H_AC0] = a * a * (1.0 / R - 1.0 / rp);
     h[H_AMAX] = alpha;
     h[H_FMAX] = f;
@@ -196,17 +195,14 @@ static void force(const double *c, const dem_geom *g, double *h, double alpha, d
       dem_normal_zero(out);
       return;
     }
-    double x = dem_jkr_quartic_root((alpha - h[H_AC0]) * h[H_IASP]);
-    if (!(x > 0.0)) x = cbrt(0.25); /* rounding at the breakage point */
-    double x3 = x * x * x;
-    a = h[H_A0P] * x * x;
-    f = h[H_FCP] * (16.0 * x3 * x3 - 24.0 * x3) / 9.0;
-    /* dF/dalpha > 0 only above the pull-off point x^3 = 3/4; below it the branch softens to
-     * -infinity at breakage (x^3 = 1/4), where rounding could flip the sign of the vanishing
+    double s = dem_jkr_root((alpha - h[H_AC0]) * h[H_IDCP]);
+    if (!(s > 0.0)) s = DEM_JKR_SF; /* rounding at the breakage point */
+    a = h[H_ACP] * s * s;
+    f = h[H_FCP] * dem_jkr_fhat(s);
+    /* dF/dalpha > 0 only above the pull-off point s = 1; below it the branch softens to
+     * -infinity at breakage (s^3 = 1/3), where rounding could flip the sign of the vanishing
      * denominator: the damping stiffness is 0 there. */
-    k = x3 > 0.75 ? h[H_FCP] * (8.0 / 3.0) * x * x * (4.0 * x3 - 3.0) * h[H_IASP] /
-                        (4.0 * x3 - 1.0)
-                  : 0.0;
+    k = s > 1.0 ? h[H_FCP] * h[H_IDCP] * dem_jkr_khat(s) : 0.0;
   }
   if (!(k > 0.0) || !isfinite(k)) k = 0.0;
   h[H_A] = a;
@@ -215,6 +211,7 @@ static void force(const double *c, const dem_geom *g, double *h, double alpha, d
   out->f_damp = c[C_ETA] * sqrt(g->m * k) * alpha_dot;
   out->f = f + out->f_damp;
   out->f_adh = 2.0 * h[H_FCP]; /* Thornton-Yin limit mu (F + 2 f_cp), Ning's extension */
+  out->alpha_t = a * a / g->R; /* Mindlin at the contact radius (8 G* a), also on R_p curves */
   out->contact = 1;
 }
 

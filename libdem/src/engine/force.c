@@ -179,7 +179,7 @@ void dem_engine_pair_forces(dem_sim *s, dem_tdata *td) {
         /* contact-point relative velocity; dem_tangential_force drops its normal part */
         const double vt[3] = {vr[0] - wxn[0], vr[1] - wxn[1], vr[2] - wxn[2]};
         double ft[3], nxf[3];
-        dem_tangential_force(&in->tang, h + hoff, n, vt, dt, g.R, alpha > 0.0 ? alpha : 0.0,
+        dem_tangential_force(&in->tang, h + hoff, n, vt, dt, g.R, out.alpha_t,
                              g.m, out.f, out.f_adh, ft);
         F[0] += ft[0];
         F[1] += ft[1];

@@ -268,8 +268,8 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
         const double ws3[3] = {ai * w[0], ai * w[1], ai * w[2]};
         cross(ws3, n, wxn);
         const double vt[3] = {vr[0] - wxn[0], vr[1] - wxn[1], vr[2] - wxn[2]};
-        dem_tangential_force(&in->tang, h + hoff, n, vt, s->dt, g.R,
-                             alpha > 0.0 ? alpha : 0.0, g.m, out.f, out.f_adh, ft);
+        dem_tangential_force(&in->tang, h + hoff, n, vt, s->dt, g.R, out.alpha_t, g.m,
+                             out.f, out.f_adh, ft);
         cross(n, ft, nxf);
         for (int k = 0; k < 3; k++) {
           F[k] += ft[k];
