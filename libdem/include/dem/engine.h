@@ -50,7 +50,28 @@ typedef struct dem_particles {
  *   DISC      a flat disc (piston) of radius `radius` centred at p with face normal n;
  *             one-sided (particles on the side n points to), with a rim contact for
  *             particles beyond the edge. */
-typedef enum { DEM_WALL_PLANE = 0, DEM_WALL_CYLINDER, DEM_WALL_DISC } dem_wall_kind;
+/* Rigid indenters (libdem/src/engine/indenters.c; thesis 6.2.2), bodies that particles
+ * touch from outside:
+ *   SPHERE    centre p, radius `radius`.
+ *   FLATCYL   a flat-ended cylinder: flat end face centred at p with outward normal n
+ *             (towards the particles, e.g. (0,0,-1) for an indenter moving down), radius
+ *             `radius`, extending without end behind the face (a punch on its rod).
+ *   BOX       a square prism (the cube of 6.2.2): leading face centred at p with outward
+ *             normal n, square cross-section of half-side `radius`, extending without end
+ *             behind the face; edges along the coordinate axis least aligned with n
+ *             (x and y for a vertical indenter) projected onto the face.
+ * Contact: the closest point of the body's surface (face, rim/edge, side, corner). The
+ * bodies are semi-infinite so that dem_wall_spec keeps its fields: a cube of side 2 radius
+ * pressed to a depth below 2 radius differs from the prism only if particles climb more than
+ * 2 radius above its leading face. */
+typedef enum {
+  DEM_WALL_PLANE = 0,
+  DEM_WALL_CYLINDER,
+  DEM_WALL_DISC,
+  DEM_WALL_SPHERE,
+  DEM_WALL_FLATCYL,
+  DEM_WALL_BOX
+} dem_wall_kind;
 
 typedef struct dem_wall_spec {
   dem_wall_kind kind;
@@ -139,6 +160,14 @@ int dem_sim_set_wall_velocity(dem_sim *s, int wall, const double v[3], dem_err *
  * gain in m/(s N), v_max in m/s. dem_sim_set_wall_velocity switches the servo off. */
 int dem_sim_set_wall_servo(dem_sim *s, int wall, double f_target, double gain, double v_max,
                            dem_err *err);
+/* Translate a wall by dp (m) at once, without doing work (e.g. to withdraw a piston that
+ * has lost contact, or to place an indenter); the neighbour lists are rebuilt. */
+int dem_sim_move_wall(dem_sim *s, int wall, const double dp[3], dem_err *err);
+/* Penetration depth (m, > 0 overlapping) of a sphere (centre x, radius r) into wall w, the
+ * unit normal from the wall surface towards the centre, and the factor rfac with
+ * R* = r rfac (1 for flat faces, edges and corners). For tests and tools. */
+double dem_wall_penetration(const dem_wall_spec *w, const double x[3], double r, double n[3],
+                            double *rfac);
 /* The wall as it is now (position after the steps taken). */
 int dem_sim_wall(const dem_sim *s, int wall, dem_wall_spec *out);
 /* Force (N) and torque about the wall point p (N m) that the particles exert on the wall in

@@ -126,6 +126,9 @@ void dem_nlist_free(dem_nlist *l);
  * contact is r * rfac (1 for plane and disc, Rc / (Rc - r) for the inside of a cylinder). */
 double dem_wall_gap(const dem_wall_spec *w, const double x[3], double r, double n[3],
                     double *rfac);
+/* indenters.c: the same for SPHERE, FLATCYL and BOX. */
+double dem_indenter_gap(const dem_wall_spec *w, const double x[3], double r, double n[3],
+                        double *rfac);
 void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1);
 /* Wall neighbour lists: the particles whose surface is within `skin` of the wall (or whose
  * history with the wall is active). Valid while particles move < skin/2 and the wall moves

@@ -32,7 +32,7 @@ static int normalise(double n[3]) {
 int dem_sim_add_wall(dem_sim *s, const dem_wall_spec *w, int *index, dem_err *err) {
   if (s->nwall >= DEM_ENGINE_MAX_WALLS)
     return dem_err_set(err, DEM_ERANGE, "walls: at most %d allowed", DEM_ENGINE_MAX_WALLS);
-  if (w->kind < DEM_WALL_PLANE || w->kind > DEM_WALL_DISC)
+  if (w->kind < DEM_WALL_PLANE || w->kind > DEM_WALL_BOX)
     return dem_err_set(err, DEM_EINVAL, "wall %d: unknown kind %d", s->nwall, (int)w->kind);
   if (w->material < 0 || w->material >= s->nmat)
     return dem_err_set(err, DEM_ERANGE, "wall %d: material %d outside [0, %d)", s->nwall,
@@ -121,6 +121,7 @@ double dem_wall_gap(const dem_wall_spec *w, const double x[3], double r, double 
   const double d[3] = {x[0] - w->p[0], x[1] - w->p[1], x[2] - w->p[2]};
   const double dn = d[0] * w->n[0] + d[1] * w->n[1] + d[2] * w->n[2];
   *rfac = 1.0;
+  if (w->kind >= DEM_WALL_SPHERE) return dem_indenter_gap(w, x, r, n, rfac);
   if (w->kind == DEM_WALL_PLANE) {
     n[0] = w->n[0];
     n[1] = w->n[1];

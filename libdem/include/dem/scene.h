@@ -1,0 +1,137 @@
+/* dem/scene.h — the ball-indentation scene (thesis 5.1, 6.1, 7.1): fill a cylindrical die
+ * with the thesis' size distribution, settle under gravity, consolidate with a servo piston
+ * at constant strain rate to the pre-consolidation stress, unload, indent at constant
+ * velocity to a given h/r, optionally unload the indenter. See docs/scene.md.
+ *
+ * Lengths of the geometry (die diameter, bed height, indenter diameter) are given in mean
+ * particle diameters d; everything else is SI. A scene is an opaque handle: create from a
+ * config, then run the stages one by one (tests) or all at once; the time series is a
+ * dem_table (dem/table.h).
+ */
+#ifndef DEM_SCENE_H
+#define DEM_SCENE_H
+
+#include "dem/engine.h"
+#include "dem/error.h"
+#include "dem/params.h"
+#include "dem/table.h"
+
+typedef enum { DEM_SCENE_PASHA = 0, DEM_SCENE_HERTZ_JKR = 1 } dem_scene_materials;
+typedef enum { DEM_SCENE_PSD_T61 = 0, DEM_SCENE_PSD_T51 = 1 } dem_scene_psd;
+typedef enum {
+  DEM_INDENTER_SPHERE = 0,
+  DEM_INDENTER_CYLINDER = 1, /* flat-ended */
+  DEM_INDENTER_CUBE = 2
+} dem_indenter_shape;
+
+typedef struct dem_scene_config {
+  /* materials: the chapter 6/7 set (pasha-simplified, Tables 6.2/6.3) or the chapter 5 set
+   * (jkr-modified particle-particle + Hertz particle-wall, Tables 5.2/5.3). The three
+   * parameter sets hold the physics-notes keys of each interaction (defaults from the
+   * tables, filled by dem_scene_config_defaults; a caller may overwrite keys). */
+  dem_scene_materials materials;
+  dem_params pp;          /* particle-particle: law coefficients + mu, mu_r, kt */
+  dem_params pw;          /* particle-die and particle-piston */
+  dem_params pi;          /* particle-indenter */
+  double rho;             /* kg/m^3, particle density */
+  double rho_wall;        /* kg/m^3, geometries (only for the record: walls are rigid) */
+  /* bed */
+  double d_mean;          /* m, mean particle diameter (1 mm) */
+  dem_scene_psd psd;      /* number distribution of Table 6.1 or 5.1 */
+  double die_diameter;    /* d, die diameter (thesis 39-45 d; default 20 d) */
+  double bed_height;      /* d, target settled bed height (thesis 13-50 d; default 12 d) */
+  double phi_est;         /* -, solids fraction assumed to size the particle count (0.58) */
+  long n_particles;       /* > 0 overrides the count from bed_height */
+  double fill_fraction;   /* -, solids fraction of the random fill volume (0.30) */
+  unsigned long seed;     /* GSL mt19937 seed */
+  /* settling */
+  double settle_ke;       /* stop when the kinetic energy per particle < settle_ke x
+                             m_mean g d_mean (1e-4: a mean particle moving ~1.4 mm/s) */
+  double settle_min_time; /* s, at least this long (the fall time) */
+  double settle_max_time; /* s, give up (error) after this */
+  /* consolidation */
+  double sigma_pre;       /* Pa, pre-consolidation stress (10 kPa) */
+  double strain_rate;     /* 1/s, piston speed / bed height (1 1/s in the thesis) */
+  double servo_band;      /* -, constant speed up to (1 - servo_band) sigma_pre, then the
+                             servo (0.1) */
+  double servo_steps;     /* servo time constant in steps for the stiffest possible bed
+                             (20; see docs/scene.md) */
+  double hold_time;       /* s, hold at sigma_pre with the servo before unloading */
+  double hold_tol;        /* -, the stress must be within this of sigma_pre (0.02) */
+  /* indentation */
+  dem_indenter_shape shape;
+  double indenter_diameter; /* d, sphere/cylinder diameter or cube side (16 d) */
+  double indent_rate;     /* 1/s, indenter speed / bed height (defaults to strain_rate) */
+  double h_over_r;        /* -, stop at this dimensionless penetration h/r (0.5) */
+  int unload;             /* 1: withdraw the indenter at the same speed after h_over_r */
+  /* numerics */
+  double dt_factor;       /* dt = dt_factor sqrt(m_min / k_max) (thesis 4.29-4.31; 0.2) */
+  double stiffness_scale; /* multiplies every stiffness (ke, kp, kcp, kt, kn; E for Hertz
+                             and JKR): 1 = the tables; < 1 speeds a run up (dt ~ k^-1/2) */
+  double skin;            /* d, neighbour skin (0.1) */
+  int threads;
+  double sample_interval; /* s, time-series row interval (0: 200 rows per stage) */
+} dem_scene_config;
+
+/* Defaults of the given material set (thesis tables) and the small quick bed. */
+void dem_scene_config_defaults(dem_scene_config *c, dem_scene_materials m);
+/* Range checks of every field; messages name the field, value and allowed range. */
+int dem_scene_config_check(const dem_scene_config *c, dem_err *err);
+
+/* Progress and snapshots: called by the stages (may be NULL). frac in [0, 1] or < 0 if
+ * unknown; eta in s of wall clock for the stage, < 0 if unknown. */
+typedef struct dem_scene_hooks {
+  void (*progress)(const char *stage, double t, double frac, double eta, void *user);
+  double progress_interval;  /* s of wall clock between progress calls */
+  int (*snapshot)(dem_sim *s, const char *stage, double t, void *user, dem_err *err);
+  double snapshot_interval;  /* s of simulated time (0: none) */
+  void *user;
+} dem_scene_hooks;
+
+typedef struct dem_scene dem_scene;
+
+typedef struct dem_scene_info {
+  size_t n;               /* particles */
+  double dt;              /* s */
+  double die_radius;      /* m */
+  double mean_d, sd_d;    /* m, number mean and standard deviation of the generated sizes */
+  double table_mean, table_sd; /* m, of the requested distribution */
+  double bed_top;         /* m, bed height: mean of the highest particle tops (see docs) */
+  double phi;             /* -, solids fraction of the bed below bed_top (after settling) */
+  double surface;         /* m, bed surface for the indentation (first indenter contact) */
+  double piston_stress;   /* Pa, last */
+  double indenter_force;  /* N, last (axial, > 0 resisting penetration) */
+  double depth;           /* m, last penetration depth from the surface */
+  double v_piston, v_indenter; /* m/s */
+} dem_scene_info;
+
+dem_scene *dem_scene_create(const dem_scene_config *c, const dem_scene_hooks *h, dem_err *err);
+void dem_scene_free(dem_scene *sc);
+int dem_scene_fill(dem_scene *sc, dem_err *err);
+int dem_scene_settle(dem_scene *sc, dem_err *err);
+int dem_scene_consolidate(dem_scene *sc, dem_err *err); /* load to sigma_pre and hold */
+int dem_scene_unload(dem_scene *sc, dem_err *err);      /* piston back to zero load, away */
+int dem_scene_indent(dem_scene *sc, dem_err *err);      /* indent (and unload if asked) */
+int dem_scene_run(dem_scene *sc, dem_err *err);         /* all of the above */
+
+dem_sim *dem_scene_sim(dem_scene *sc);
+/* The time series: t [s], stage [0 settle, 1 consolidate, 2 unload, 3 indent, 4 withdraw],
+ * piston_z [m], piston_stress [Pa], indenter_z [m], depth [m], h_over_r [-],
+ * indenter_force [N], hardness [Pa], kinetic_energy [J], contacts [-], wall_contacts [-]. */
+const dem_table *dem_scene_series(const dem_scene *sc);
+void dem_scene_get_info(const dem_scene *sc, dem_scene_info *info);
+/* The discrete size distribution: diameters (in d) and number fractions of a table. */
+int dem_scene_psd_table(dem_scene_psd psd, const double **dd, const double **frac);
+/* Projected contact area of the indenter at depth h (m^2): sphere pi (D h - h^2) up to
+ * h = D/2, then pi D^2/4 (thesis 2.7-2.9); flat cylinder pi D^2/4; cube D^2. */
+double dem_scene_indent_area(dem_indenter_shape shape, double D, double h);
+
+/* Snapshot DIR/snap_<index>.h5 (x, v, omega, radius, id; attributes time, stage) and the
+ * XDMF index DIR/snapshots.xmf over snapshots 0..count-1 (times, particle counts); both
+ * written to a temporary file and renamed. */
+int dem_scene_write_snapshot(dem_sim *s, const char *dir, int index, double t,
+                             const char *stage, dem_err *err);
+int dem_scene_write_xdmf(const char *dir, int count, const double *times, const size_t *n,
+                         dem_err *err);
+
+#endif

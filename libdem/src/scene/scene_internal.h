@@ -1,0 +1,34 @@
+/* Private state of the ball-indentation scene (libdem/src/scene/). Not installed. */
+#ifndef DEM_SCENE_INTERNAL_H
+#define DEM_SCENE_INTERNAL_H
+
+#include "dem/scene.h"
+
+struct dem_scene {
+  dem_scene_config cfg;
+  dem_scene_hooks hooks;
+  dem_sim *sim;
+  dem_table *series;
+  int mat_p, mat_w, mat_i;   /* particle, die/piston, indenter materials */
+  int w_base, w_die, w_piston, w_ind; /* wall indices (w_ind -1 until the indent stage) */
+  double die_radius;         /* m */
+  double fill_top;           /* m, top of the random fill volume */
+  double mean_d, sd_d;       /* m, of the generated sizes */
+  double dt;                 /* s */
+  double k_max;              /* N/m, largest contact stiffness */
+  long since_row;            /* steps since the last row */
+  double m_mean;             /* kg */
+  double bed_top, phi;       /* m, -: after settling / consolidation */
+  double surface;            /* m, first indenter contact (NAN before) */
+  double v_piston, v_ind;    /* m/s */
+  double ind_r;              /* m, indenter radius (half side for a cube) */
+  int stage;                 /* the series' stage code */
+  double next_snap;          /* s */
+  double last_progress;      /* s of wall clock */
+  double stage_wall0;        /* s of wall clock at the stage start */
+};
+
+int scene_fill(dem_scene *sc, dem_err *err);
+void scene_psd_moments(dem_scene_psd psd, double d_mean, double *mean, double *sd);
+
+#endif
