@@ -271,6 +271,98 @@ START_TEST(test_rejects_bad_files) {
 }
 END_TEST
 
+
+/* Every wall kind survives a checkpoint: a floor, two side planes and the three indenters
+ * (sphere, flat-ended cylinder, cube; thesis 6.2.2), each met by a sphere falling under
+ * gravity, with the indenters moving down. N steps, checkpoint, M more == restart + M. */
+START_TEST(test_restart_indenters) {
+  dem_err err = {0};
+  dem_sim *s[2];
+  for (int k = 0; k < 2; k++) {
+    s[k] = dem_sim_create(&err);
+    ck_assert_ptr_nonnull(s[k]);
+    int mat;
+    ck_assert_int_eq(dem_sim_add_material(s[k], 2500.0, &mat, &err), DEM_OK);
+    dem_params ps;
+    dem_params_init(&ps);
+    dem_params_set(&ps, "E", 1e8, "test", NULL);
+    dem_params_set(&ps, "nu", 0.3, "test", NULL);
+    dem_params_set(&ps, "e", 0.5, "test", NULL);
+    dem_params_set(&ps, "mu", 0.3, "test", NULL);
+    dem_contact ct;
+    dem_tangential tg;
+    ck_assert_int_eq(dem_contact_setup(&ct, &dem_law_hertz, &ps, &err), DEM_OK);
+    ck_assert_int_eq(dem_tangential_setup(&tg, DEM_TANGENTIAL_MINDLIN, &ps, &err), DEM_OK);
+    ck_assert_int_eq(dem_sim_set_interaction(s[k], mat, mat, &ct, &tg, NULL, &err), DEM_OK);
+    const dem_wall_kind kinds[6] = {DEM_WALL_PLANE,  DEM_WALL_PLANE,    DEM_WALL_PLANE,
+                                    DEM_WALL_SPHERE, DEM_WALL_FLATCYL,  DEM_WALL_BOX};
+    for (int w = 0; w < 6; w++) {
+      dem_wall_spec ws;
+      memset(&ws, 0, sizeof ws);
+      ws.kind = kinds[w];
+      ws.material = mat;
+      if (w == 0) ws.n[2] = 1.0; /* floor */
+      if (w == 1) ws.n[0] = 1.0; /* x = 0 */
+      if (w == 2) {              /* x = 0.04 */
+        ws.n[0] = -1.0;
+        ws.p[0] = 0.04;
+      }
+      if (w >= 3) { /* indenters at x = 0.008, 0.02, 0.032, lowest point at z = 1.2 mm, facing down */
+        ws.p[0] = 0.008 + 0.012 * (w - 3);
+        ws.p[1] = 0.01;
+        ws.radius = 2.5e-3;
+        ws.p[2] = (w == 3) ? 1.2e-3 + ws.radius : 1.2e-3; /* sphere: p is the centre */
+        ws.n[2] = -1.0;
+        ws.v[2] = -0.01;
+      }
+      ck_assert_int_eq(dem_sim_add_wall(s[k], &ws, NULL, &err), DEM_OK);
+    }
+    for (int i = 0; i < 3; i++) { /* on the floor under each indenter, and under its rim */
+      double x[3] = {0.008 + 0.012 * i + 4e-4 * i, 0.01 + 3e-4, 5e-4}, v[3] = {0, 0, 0};
+      ck_assert_int_eq(dem_sim_add_particle(s[k], x, v, 5e-4, mat, &err), DEM_OK);
+      double xf[3] = {x[0] + 2.6e-3, x[1], 5e-4};
+      ck_assert_int_eq(dem_sim_add_particle(s[k], xf, v, 5e-4, mat, &err), DEM_OK);
+    }
+    const double g[3] = {0.0, 0.0, -9.81};
+    dem_sim_set_gravity(s[k], g);
+    ck_assert_int_eq(dem_sim_set_dt(s[k], 1e-6, &err), DEM_OK);
+    ck_assert_int_eq(dem_sim_set_skin(s[k], 1e-4, &err), DEM_OK);
+  }
+  const long N = 20000, M = 10000; /* indenters reach the particles after ~18 ms */
+  ck_assert_int_eq(dem_sim_run(s[0], N, &err), DEM_OK);
+  ck_assert_int_eq(dem_sim_run(s[1], N + M, &err), DEM_OK);
+  char path[512];
+  tmp_path(path, sizeof path, "indenters");
+  ck_assert_int_eq(dem_sim_checkpoint_write(s[0], path, NULL, 0, &err), DEM_OK);
+  ck_assert_int_eq(dem_sim_run(s[0], M, &err), DEM_OK);
+  void *ub = NULL;
+  size_t ulen = 0;
+  dem_sim *b = dem_sim_checkpoint_read(path, &ub, &ulen, &err);
+  ck_assert_msg(b != NULL, "%s", err.msg);
+  free(ub);
+  for (int w = 3; w < 6; w++) {
+    dem_wall_spec wa, wb;
+    dem_sim_wall(s[0], w, &wa);
+    dem_sim_wall(b, w, &wb);
+    ck_assert_int_eq(wb.kind, wa.kind);
+    ck_assert_double_eq(wb.radius, wa.radius);
+  }
+  ck_assert_int_eq(dem_sim_run(b, M, &err), DEM_OK);
+  assert_same(s[0], b);
+  assert_same(s[0], s[1]);
+  /* the indenters did meet the particles: every indenter has done work */
+  for (int w = 3; w < 6; w++) {
+    double f[3], t[3], work;
+    dem_sim_wall_load(s[0], w, f, t, &work);
+    ck_assert_msg(work != 0.0, "indenter %d never touched a particle", w);
+  }
+  remove(path);
+  dem_sim_free(s[0]);
+  dem_sim_free(s[1]);
+  dem_sim_free(b);
+}
+END_TEST
+
 static volatile sig_atomic_t stop_flag = 0;
 static void on_alarm(int sig) {
   (void)sig;
@@ -326,6 +418,7 @@ static Suite *suite(void) {
   tcase_set_timeout(tc, 120);
   tcase_add_loop_test(tc, test_restart_equal, 0, 2);
   tcase_add_test(tc, test_rejects_bad_files);
+  tcase_add_test(tc, test_restart_indenters);
   tcase_add_test(tc, test_interrupt);
   suite_add_tcase(s, tc);
   return s;

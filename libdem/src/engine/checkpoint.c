@@ -493,8 +493,10 @@ static int restore(rctx *r, dem_sim **out, void **user, size_t *user_len) {
     const double *d = wd[k];
     dem_wall_spec ws;
     memset(&ws, 0, sizeof ws);
-    if (d[WD_KIND] != 0.0 && d[WD_KIND] != 1.0 && d[WD_KIND] != 2.0)
-      return bad(r, "wall kind", (long long)d[WD_KIND], "0, 1, 2");
+    /* Every kind of dem_wall_kind, indenters included (their state is the same spec). */
+    if (!(d[WD_KIND] >= DEM_WALL_PLANE && d[WD_KIND] <= DEM_WALL_BOX) ||
+        d[WD_KIND] != (double)(int)d[WD_KIND])
+      return bad(r, "wall kind", (long long)d[WD_KIND], "0 to 5 (dem_wall_kind)");
     ws.kind = (dem_wall_kind)(int)d[WD_KIND];
     for (int c = 0; c < 3; c++) {
       ws.p[c] = d[WD_P + c];
