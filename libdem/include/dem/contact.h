@@ -143,6 +143,24 @@ double dem_damping_eta_hertz(double e, int clipped);
  * (docs/contact-laws.md, "Damping"). eta >= 0; returns a negative number on failure. */
 double dem_damping_restitution_hertz(double eta, int clipped);
 
+/* The four material coefficients of every law that needs the reduced modulus E* (thesis
+ * eq 3.15): the particle's E, nu and the wall's or second particle's wall_E, wall_nu (absent:
+ * the particle's values, i.e. an equal sphere; wall_E = 1e30 stands for a rigid wall). Put
+ * DEM_COEF_ELASTIC first in the law's coefficient table and read E* with
+ * dem_contact_reduced_modulus. */
+#define DEM_COEF_ELASTIC                                                                      \
+  {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},                          \
+      {"nu", "-", "Poisson's ratio of the particle", -0.99, 0.5, NAN},                     \
+      {"wall_E", "Pa",                                                                     \
+       "Young's modulus of the wall or second particle (default: E; 1e30 = rigid)", 1e3,   \
+       1e30, -1.0},                                                                        \
+  {                                                                                        \
+    "wall_nu", "-", "Poisson's ratio of the wall or second particle (default: nu)", -0.99, \
+        0.5, -2.0                                                                          \
+  }
+/* E* (Pa) from a parameter set holding the DEM_COEF_ELASTIC keys (defaults applied). */
+double dem_contact_reduced_modulus(const dem_params *ps);
+
 /* Fill out for "no contact". */
 static inline void dem_normal_zero(dem_normal *out) {
   out->f = out->f_el = out->f_damp = out->k = out->f_adh = out->alpha_t = 0.0;

@@ -21,21 +21,12 @@
 enum { C_ES = DEM_HERTZ_C_ES, C_ETA = DEM_HERTZ_C_ETA, C_E = DEM_HERTZ_C_E };
 
 static const dem_coef_spec coefs[] = {
-    {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
-    {"nu", "-", "Poisson's ratio of the particle", -0.99, 0.5, NAN},
-    {"wall_E", "Pa", "Young's modulus of the wall or second particle (default: E; 1e30 = rigid)",
-     1e3, 1e30, -1.0},
-    {"wall_nu", "-", "Poisson's ratio of the wall or second particle (default: nu)", -0.99, 0.5,
-     -2.0},
+    DEM_COEF_ELASTIC,
     {"e", "-", "coefficient of restitution of the viscous damping", 1e-2, 1.0, 1.0},
 };
 
 static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
-  double E = dem_params_get_or(ps, "E", NAN), nu = dem_params_get_or(ps, "nu", NAN);
-  double wE = dem_params_get_or(ps, "wall_E", -1.0), wnu = dem_params_get_or(ps, "wall_nu", -2.0);
-  if (wE < 0.0) wE = E;
-  if (wnu < -1.0) wnu = nu;
-  c[C_ES] = dem_reduced_modulus(E, nu, wE, wnu);
+  c[C_ES] = dem_contact_reduced_modulus(ps);
   double e = dem_params_get_or(ps, "e", 1.0);
   c[C_E] = e;
   c[C_ETA] = dem_damping_eta_hertz(e, 0);

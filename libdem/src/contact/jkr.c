@@ -31,23 +31,14 @@
 #include "jkr_law.h"
 
 const dem_coef_spec dem_jkrlaw_coefs[] = {
-    {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
-    {"nu", "-", "Poisson's ratio of the particle", -0.99, 0.5, NAN},
-    {"wall_E", "Pa", "Young's modulus of the wall or second particle (default: E; 1e30 = rigid)",
-     1e3, 1e30, -1.0},
-    {"wall_nu", "-", "Poisson's ratio of the wall or second particle (default: nu)", -0.99, 0.5,
-     -2.0},
+    DEM_COEF_ELASTIC,
     {"gamma", "J/m^2", "interface energy Gamma (f_c = 1.5 pi Gamma R*)", 1e-6, 1e4, NAN},
     {"e", "-", "restitution of the viscous damping (reached at high impact velocity)", 1e-2, 1.0,
      1.0},
 };
 
 int dem_jkrlaw_set_coeffs(const dem_params *ps, double *c, dem_err *err) {
-  double E = dem_params_get_or(ps, "E", NAN), nu = dem_params_get_or(ps, "nu", NAN);
-  double wE = dem_params_get_or(ps, "wall_E", -1.0), wnu = dem_params_get_or(ps, "wall_nu", -2.0);
-  if (wE < 0.0) wE = E;
-  if (wnu < -1.0) wnu = nu;
-  c[DEM_JKR_C_ES] = dem_reduced_modulus(E, nu, wE, wnu);
+  c[DEM_JKR_C_ES] = dem_contact_reduced_modulus(ps);
   c[DEM_JKR_C_GAMMA] = dem_params_get_or(ps, "gamma", NAN);
   double e = dem_params_get_or(ps, "e", 1.0);
   c[DEM_JKR_C_E] = e;

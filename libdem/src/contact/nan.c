@@ -52,12 +52,7 @@ enum {
 enum { ST_FRESH = 0, ST_CONTACT = 1, ST_APART = 2 };
 
 static const dem_coef_spec coefs[] = {
-    {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
-    {"nu", "-", "Poisson's ratio of the particle", -0.99, 0.5, NAN},
-    {"wall_E", "Pa", "Young's modulus of the wall or second particle (default: E; 1e30 = rigid)",
-     1e3, 1e30, -1.0},
-    {"wall_nu", "-", "Poisson's ratio of the wall or second particle (default: nu)", -0.99, 0.5,
-     -2.0},
+    DEM_COEF_ELASTIC,
     {"gamma", "J/m^2", "interface energy Gamma, f_ce = 1.5 pi Gamma R* (eq 5)", DBL_MIN, 1e3, NAN},
     {"py", "Pa", "limiting contact (yield) pressure p_y", DBL_MIN, 1e12, NAN},
     {"ke", "N/m", "k_el, elastic stiffness before yield (default: pi R* p_y, eq 52)", DBL_MIN,
@@ -77,11 +72,7 @@ static const dem_coef_spec coefs[] = {
 };
 
 static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
-  double E = dem_params_get_or(ps, "E", NAN), nu = dem_params_get_or(ps, "nu", NAN);
-  double wE = dem_params_get_or(ps, "wall_E", -1.0), wnu = dem_params_get_or(ps, "wall_nu", -2.0);
-  if (wE < 0.0) wE = E;
-  if (wnu < -1.0) wnu = nu;
-  c[C_ES] = dem_reduced_modulus(E, nu, wE, wnu);
+  c[C_ES] = dem_contact_reduced_modulus(ps);
   c[C_GAMMA] = dem_params_get_or(ps, "gamma", NAN);
   c[C_PY] = dem_params_get_or(ps, "py", NAN);
   c[C_KEL] = dem_params_get_or(ps, "ke", -1.0);

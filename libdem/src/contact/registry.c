@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "dem/contact.h"
+#include "dem/material.h"
 
 static const dem_law *const laws[] = {
 #define DEM_LAW(sym) &sym,
@@ -123,4 +124,12 @@ int dem_contact_init(const dem_contact *ct, const dem_geom *g, double *hist, dem
 
 double dem_contact_kref(const dem_contact *ct, const dem_geom *g, double v) {
   return ct->law->kref(ct->c, g, v);
+}
+
+double dem_contact_reduced_modulus(const dem_params *ps) {
+  double E = dem_params_get_or(ps, "E", NAN), nu = dem_params_get_or(ps, "nu", NAN);
+  double wE = dem_params_get_or(ps, "wall_E", -1.0), wnu = dem_params_get_or(ps, "wall_nu", -2.0);
+  if (wE < 0.0) wE = E;    /* the DEM_COEF_ELASTIC default: an equal sphere */
+  if (wnu < -1.0) wnu = nu;
+  return dem_reduced_modulus(E, nu, wE, wnu);
 }

@@ -35,23 +35,14 @@ enum { C_ES, C_PY, C_ETA, C_E, C_AY };
 enum { H_AMAX = 1, H_FMAX, H_RP, H_AP, NHIST };
 
 static const dem_coef_spec coefs[] = {
-    {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
-    {"nu", "-", "Poisson's ratio of the particle", -0.99, 0.5, NAN},
-    {"wall_E", "Pa", "Young's modulus of the wall or second particle (default: E; 1e30 = rigid)",
-     1e3, 1e30, -1.0},
-    {"wall_nu", "-", "Poisson's ratio of the wall or second particle (default: nu)", -0.99, 0.5,
-     -2.0},
+    DEM_COEF_ELASTIC,
     {"py", "Pa", "limiting contact (yield) pressure p_y (at most 2 E* / pi)", 1.0, 1e12, NAN},
     {"e", "-", "restitution of the viscous damping (1: Thornton's undamped model)", 1e-2, 1.0,
      1.0},
 };
 
 static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
-  double E = dem_params_get_or(ps, "E", NAN), nu = dem_params_get_or(ps, "nu", NAN);
-  double wE = dem_params_get_or(ps, "wall_E", -1.0), wnu = dem_params_get_or(ps, "wall_nu", -2.0);
-  if (wE < 0.0) wE = E;
-  if (wnu < -1.0) wnu = nu;
-  double Es = dem_reduced_modulus(E, nu, wE, wnu), py = dem_params_get_or(ps, "py", NAN);
+  double Es = dem_contact_reduced_modulus(ps), py = dem_params_get_or(ps, "py", NAN);
   /* alpha_y / R* = (pi p_y / (2 E*))^2 must not exceed 1: p_y <= 2 E* / pi. */
   if (!(py <= 2.0 * Es / M_PI))
     return dem_err_set(err, DEM_ERANGE,

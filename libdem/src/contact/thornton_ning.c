@@ -61,12 +61,7 @@ enum {
 enum { ST_FRESH = 0, ST_CONTACT = 1, ST_APART = 2 };
 
 static const dem_coef_spec coefs[] = {
-    {"E", "Pa", "Young's modulus of the particle", 1e3, 1e13, NAN},
-    {"nu", "-", "Poisson's ratio of the particle", -0.99, 0.5, NAN},
-    {"wall_E", "Pa", "Young's modulus of the wall or second particle (default: E; 1e30 = rigid)",
-     1e3, 1e30, -1.0},
-    {"wall_nu", "-", "Poisson's ratio of the wall or second particle (default: nu)", -0.99, 0.5,
-     -2.0},
+    DEM_COEF_ELASTIC,
     {"gamma", "J/m^2", "interface energy Gamma, f_c = 1.5 pi Gamma R*", DBL_MIN, 1e3, NAN},
     {"py", "Pa", "limiting contact pressure p_y (thesis 3.55)", DBL_MIN, 1e12, NAN},
     {"e", "-", "restitution of the optional viscous damping (1 = none, the reference law)", 1e-3,
@@ -75,11 +70,7 @@ static const dem_coef_spec coefs[] = {
 
 static int set_coeffs(const dem_params *ps, double *c, dem_err *err) {
   (void)err;
-  double E = dem_params_get_or(ps, "E", NAN), nu = dem_params_get_or(ps, "nu", NAN);
-  double wE = dem_params_get_or(ps, "wall_E", -1.0), wnu = dem_params_get_or(ps, "wall_nu", -2.0);
-  if (wE < 0.0) wE = E;
-  if (wnu < -1.0) wnu = nu;
-  c[C_ES] = dem_reduced_modulus(E, nu, wE, wnu);
+  c[C_ES] = dem_contact_reduced_modulus(ps);
   c[C_GAMMA] = dem_params_get_or(ps, "gamma", NAN);
   c[C_PY] = dem_params_get_or(ps, "py", NAN);
   c[C_ETA] = dem_damping_eta_linear(dem_params_get_or(ps, "e", 1.0));
