@@ -1,6 +1,8 @@
 /* Shared code of the dem-* programs (cli_common.h). */
 #include "cli_common.h"
 
+#include <getopt.h>
+
 #include <errno.h>
 #include <float.h>
 #include <libconfig.h>
@@ -270,4 +272,17 @@ int cli_config_load(const char *path, cli_config *c, dem_params *ps, dem_err *er
     rc = cfg_entry(path, config_setting_get_elem(root, (unsigned)i), c, ps, err);
   config_destroy(&cfg);
   return rc;
+}
+
+int cli_getopt_error(char *const *argv, dem_err *err) {
+  if (optopt)
+    return dem_err_set(err, DEM_EINVAL, "option '%s' needs a value or takes none",
+                       argv[optind - 1]);
+  return dem_err_set(err, DEM_EINVAL, "unknown option '%s'", argv[optind - 1]);
+}
+
+int cli_no_operands(int argc, char *const *argv, dem_err *err) {
+  if (optind < argc)
+    return dem_err_set(err, DEM_EINVAL, "unexpected argument '%s'", argv[optind]);
+  return DEM_OK;
 }

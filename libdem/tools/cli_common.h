@@ -62,5 +62,10 @@ void cli_list_laws(FILE *out);
 void cli_print_version(const char *prog);
 /* "prog: message" on stderr. */
 void cli_error(const char *prog, const dem_err *err);
+/* The error of getopt_long's '?' return: a missing or unexpected value (optopt set) or an
+ * unknown option. Always returns DEM_EINVAL. */
+int cli_getopt_error(char *const *argv, dem_err *err);
+/* DEM_EINVAL naming the first operand if any is left after the options, else DEM_OK. */
+int cli_no_operands(int argc, char *const *argv, dem_err *err);
 
 #endif

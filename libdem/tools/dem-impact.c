@@ -227,19 +227,12 @@ int main(int argc, char **argv) {
       cli_print_version(prog);
       return CLI_EXIT_OK;
     default:
-      if (optopt)
-        dem_err_set(&err, DEM_EINVAL, "option '%s' needs a value or takes none",
-                    argv[optind - 1]);
-      else
-        dem_err_set(&err, DEM_EINVAL, "unknown option '%s'", argv[optind - 1]);
+      cli_getopt_error(argv, &err);
       return usage_error(&err);
     }
     if (rc) return usage_error(&err);
   }
-  if (optind < argc) {
-    dem_err_set(&err, DEM_EINVAL, "unexpected argument '%s'", argv[optind]);
-    return usage_error(&err);
-  }
+  if (cli_no_operands(argc, argv, &err)) return usage_error(&err);
 
   /* Configuration file under the flags. */
   cli_config cf;
