@@ -11,6 +11,7 @@
 #ifndef DEM_SCENE_H
 #define DEM_SCENE_H
 
+#include "dem/analysis.h"
 #include "dem/engine.h"
 #include "dem/error.h"
 #include "dem/params.h"
@@ -125,6 +126,37 @@ int dem_scene_psd_table(dem_scene_psd psd, const double **dd, const double **fra
 /* Projected contact area of the indenter at depth h (m^2): sphere pi (D h - h^2) up to
  * h = D/2, then pi D^2/4 (thesis 2.7-2.9); flat cylinder pi D^2/4; cube D^2. */
 double dem_scene_indent_area(dem_indenter_shape shape, double D, double h);
+
+/* ---- checkpoints of a scene and reuse of a prepared bed (issue 5) ---------------------
+ * A scene checkpoint is an engine checkpoint (dem/checkpoint.h) whose caller blob holds the
+ * scene state: the config, the stage reached, the bed measurements, the surface and the time
+ * series so far. dem_scene_save writes it (temporary file + rename); dem_scene_restore reads
+ * it back into a new scene that continues bit-identically (same thread count) with the
+ * stored config. `override` (may be NULL) replaces the config of the stages not yet run;
+ * only the indentation fields (shape, indenter_diameter, indent_rate, h_over_r, unload), the
+ * particle-indenter parameters `pi`, threads, sample_interval and the settle/consolidation
+ * limits may differ from the stored config (anything else: DEM_EINVAL naming the field).
+ * This is how one consolidated bed serves many indentations. */
+typedef enum {
+  DEM_SCENE_STAGE_NONE = -1, /* created, not filled */
+  DEM_SCENE_STAGE_FILLED = 0,
+  DEM_SCENE_STAGE_SETTLED = 1,
+  DEM_SCENE_STAGE_CONSOLIDATED = 2,
+  DEM_SCENE_STAGE_UNLOADED = 3,
+  DEM_SCENE_STAGE_INDENTED = 4
+} dem_scene_stage;
+int dem_scene_save(const dem_scene *sc, const char *path, dem_err *err);
+dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
+                             const dem_scene_hooks *h, dem_err *err);
+/* The last stage completed. dem_scene_run continues from it. */
+dem_scene_stage dem_scene_get_stage(const dem_scene *sc);
+
+/* ---- stresses of the bed (thesis 5.1-5.3, App. IV; dem/analysis.h) -------------------
+ * Contact view of the current state for dem_stress_box / dem_stress_grid: every
+ * particle-particle contact twice and every particle-wall (incl. indenter) contact once,
+ * contact points and forces of the last force evaluation. The arrays belong to the scene
+ * and stay valid until the next stage runs or the scene is freed. */
+int dem_scene_contacts(dem_scene *sc, dem_contact_view *view, dem_err *err);
 
 /* Snapshot DIR/snap_<index>.h5 (x, v, omega, radius, id; attributes time, stage) and the
  * XDMF index DIR/snapshots.xmf over snapshots 0..count-1 (times, particle counts); both
