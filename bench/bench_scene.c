@@ -66,6 +66,7 @@ typedef struct variant {
   double dtf;          /* dt_factor */
   double die, bed, ind; /* d */
   double hr;           /* final h/r */
+  unsigned long seed;  /* fill seed (1 unless replicated) */
   /* results */
   int ran, rc;
   char msg[600];
@@ -139,6 +140,7 @@ static void config_of(const variant *v, int threads, dem_scene_config *c) {
   c->indenter_diameter = v->ind;
   c->h_over_r = v->hr;
   c->fill_fraction = 0.33;
+  c->seed = v->seed ? v->seed : 1;
   c->settle_min_time = 0.01;
   c->hold_time = 1e-3;
   c->strain_rate = rate_of(v->gstar);
@@ -316,6 +318,7 @@ static json_t *variant_json(const variant *v) {
   json_object_set_new(o, "bed_height", num(v->bed));
   json_object_set_new(o, "indenter_diameter", num(v->ind));
   json_object_set_new(o, "h_over_r", num(v->hr));
+  json_object_set_new(o, "seed", json_integer((json_int_t)(v->seed ? v->seed : 1)));
   json_object_set_new(o, "ran", json_boolean(v->ran));
   json_object_set_new(o, "status", json_integer(v->rc));
   json_object_set_new(o, "status_name", json_string(code_name(v->rc)));
@@ -692,9 +695,77 @@ static int study_stability(const opts *o) {
   return vs[0].rc || !isfinite(vs[0].H_mean) ? EXIT_RUN_ : EXIT_OK_;
 }
 
+/* Replicate beds (fill seeds) at the reference stiffness and at x0.01, on the speed scene:
+ * the bed-to-bed spread of the plateau mean against the within-run standard error, and the
+ * stiffness effect judged from the spread of replicates (dem_replicates_mean,
+ * dem_compare_means_t with k - 1 degrees of freedom). */
+static int study_replicates(const opts *o) {
+  variant vs[MAXV];
+  int nv = 0;
+  const double lo = 0.1;
+  double die = 10, bed = 6, ind = 6, hr = 0.3, g = 0.05, dtf = 0.2;
+  int k_ref = 3, k_lo = 5;
+  if (o->quick) die = 6, bed = 4, ind = 3, g = 0.5, dtf = 0.4, k_ref = 2, k_lo = 2;
+  static const double scales[2] = {0.1, 0.01};
+  char name[48];
+  for (int a = 0; a < 2; a++)
+    for (int k = 1; k <= (a ? k_lo : k_ref); k++) {
+      snprintf(name, sizeof name, "s%g_seed%d", scales[a], k);
+      set_v(&vs[nv], name, a ? "x0.01" : "x0.1", scales[a], g, dtf, die, bed, ind, hr);
+      vs[nv++].seed = (unsigned long)k;
+    }
+  double t0 = now_wall();
+  run_all(vs, nv, 0, o, t0, lo);
+  json_t *root = finish(vs, nv, 0, "replicates", o, t0, lo);
+  json_t *grp = json_object();
+  double m[2] = {NAN, NAN}, se[2] = {NAN, NAN}, nu[2] = {1, 1};
+  for (int a = 0; a < 2; a++) {
+    double means[MAXV], wse = 0.0;
+    size_t k = 0;
+    for (int i = 0; i < nv; i++)
+      if (vs[i].scale == scales[a] && vs[i].ran && !vs[i].rc && isfinite(vs[i].H_mean)) {
+        means[k++] = vs[i].H_mean;
+        wse += vs[i].H_se * vs[i].H_se;
+      }
+    json_t *gj = json_object();
+    json_object_set_new(gj, "stiffness_scale", num(scales[a]));
+    json_object_set_new(gj, "beds", json_integer((json_int_t)k));
+    dem_err e;
+    if (k >= 2 && dem_replicates_mean(k, means, &m[a], &se[a], &e) == DEM_OK) {
+      nu[a] = (double)k - 1.0;
+      json_object_set_new(gj, "H_mean", num(m[a]));
+      json_object_set_new(gj, "H_se_replicates", num(se[a]));
+      json_object_set_new(gj, "H_sd_between_beds", num(se[a] * sqrt((double)k)));
+      json_object_set_new(gj, "H_se_within_rms", num(sqrt(wse / (double)k)));
+    }
+    json_object_set_new(grp, a ? "x0.01" : "x0.1", gj);
+  }
+  dem_comparison cmp;
+  dem_err e;
+  if (isfinite(m[0]) && isfinite(m[1]) &&
+      dem_compare_means_t(m[1], se[1], nu[1], m[0], se[0], nu[0], 0.05, DEM_TEST_TWO_SIDED,
+                          &cmp, &e) == DEM_OK) {
+    json_t *c = json_object();
+    json_object_set_new(c, "diff", num(cmp.diff));
+    json_object_set_new(c, "se", num(cmp.se));
+    json_object_set_new(c, "t", num(cmp.z));
+    json_object_set_new(c, "t_crit", num(cmp.z_crit));
+    json_object_set_new(c, "p", num(cmp.p));
+    json_object_set_new(c, "different", json_boolean(cmp.different));
+    json_object_set_new(grp, "x0.01_vs_x0.1", c);
+  }
+  json_object_set_new(root, "groups", grp);
+  int rc = write_outputs(o->out, "study_replicates", root, vs, nv);
+  if (o->json) json_dumpf(root, stdout, JSON_INDENT(1) | JSON_REAL_PRECISION(6)), puts("");
+  json_decref(root);
+  if (rc) return EXIT_RUN_;
+  return vs[0].rc || !isfinite(vs[0].H_mean) ? EXIT_RUN_ : EXIT_OK_;
+}
+
 static void usage(FILE *f) {
   fprintf(f,
-          "usage: dem-bench-scene --study speed|stability [--out DIR] [--budget SECONDS]\n"
+          "usage: dem-bench-scene --study speed|stability|replicates [--out DIR]\n"
+          "                       [--budget SECONDS]\n"
           "                       [--threads N] [--json] [--quick] [--only NAME,...]\n"
           "  Speed-versus-accuracy study or stability map of the ball-indentation scene\n"
           "  (docs/validation-study.md). Writes DIR/study_<study>.{csv,json,gp,png}\n"
@@ -723,8 +794,10 @@ int main(int argc, char **argv) {
       case 's':
         if (strcmp(optarg, "speed") == 0) o.study = 0;
         else if (strcmp(optarg, "stability") == 0) o.study = 1;
+        else if (strcmp(optarg, "replicates") == 0) o.study = 2;
         else {
-          fprintf(stderr, "dem-bench-scene: --study = '%s' (allowed: speed, stability)\n",
+          fprintf(stderr,
+                  "dem-bench-scene: --study = '%s' (allowed: speed, stability, replicates)\n",
                   optarg);
           return EXIT_USAGE_;
         }
@@ -769,5 +842,6 @@ int main(int argc, char **argv) {
     fprintf(stderr, "dem-bench-scene: cannot create %s: %s\n", o.out, strerror(errno));
     return EXIT_RUN_;
   }
-  return o.study == 0 ? study_speed(&o) : study_stability(&o);
+  return o.study == 0 ? study_speed(&o) : o.study == 1 ? study_stability(&o)
+                                                      : study_replicates(&o);
 }
