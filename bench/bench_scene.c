@@ -428,7 +428,7 @@ static void speed_chart(const char *dir, const variant *vs, int nv, const varian
   FILE *f = fopen(gp, "w");
   if (!f) return;
   fprintf(f,
-          "set terminal pngcairo size 900,600 font ',10'\nset output '%s'\n"
+          "set terminal pngcairo size 900,600 font ',10' noenhanced\nset output '%s'\n"
           "set logscale x\nset xlabel 'CPU time per variant (s, fill to the end of the "
           "indentation; 1 thread)'\n"
           "set ylabel 'plateau hardness H (kPa), mean over h/r window +- SE'\n"
@@ -437,11 +437,11 @@ static void speed_chart(const char *dir, const variant *vs, int nv, const varian
           "Href=%g; se=%g\n"
           "set object 1 rect from graph 0, first Href-se to graph 1, first Href+se "
           "fc rgb '#dddddd' fs solid 0.6 noborder behind\n"
-          "plot '%s' index 1 u 1:2:3 w yerrorbars lw 1.5 pt 7 t 'stiffness\\_scale', \\\n"
+          "plot '%s' index 1 u 1:2:3 w yerrorbars lw 1.5 pt 7 t 'stiffness scale', \\\n"
           " '' index 1 u 1:2:4 w labels offset 0,1 font ',7' notitle, \\\n"
           " '' index 2 u 1:2:3 w yerrorbars lw 1.5 pt 5 t 'gamma*', \\\n"
           " '' index 2 u 1:2:4 w labels offset 0,1 font ',7' notitle, \\\n"
-          " '' index 3 u 1:2:3 w yerrorbars lw 1.5 pt 9 t 'dt\\_factor', \\\n"
+          " '' index 3 u 1:2:3 w yerrorbars lw 1.5 pt 9 t 'dt factor', \\\n"
           " '' index 3 u 1:2:4 w labels offset 0,-1 font ',7' notitle, \\\n"
           " '' index 4 u 1:2:3 w yerrorbars lw 1.5 pt 11 t 'die diameter', \\\n"
           " '' index 4 u 1:2:4 w labels offset 0,-1 font ',7' notitle, \\\n"
