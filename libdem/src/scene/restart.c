@@ -57,7 +57,7 @@ static const cfg_field cfg_fields[] = {
     F(hold_tol, K_DBL, OV_LIMIT),          F(shape, K_INT, OV_INDENT),
     F(indenter_diameter, K_DBL, OV_INDENT), F(indent_rate, K_DBL, OV_INDENT),
     F(h_over_r, K_DBL, OV_INDENT),         F(unload, K_INT, OV_INDENT),
-    F(dt_factor, K_DBL, OV_NEVER),         F(stiffness_scale, K_DBL, OV_NEVER),
+    F(dt_factor, K_DBL, OV_INDENT),         F(stiffness_scale, K_DBL, OV_NEVER),
     F(skin, K_DBL, OV_NEVER),              F(threads, K_INT, OV_FREE),
     F(sample_interval, K_DBL, OV_FREE),
 };
@@ -393,7 +393,7 @@ static int apply_override(dem_scene *sc, const dem_scene_config *ov, const char 
       return dem_err_set(err, DEM_EINVAL,
                          "%s: the override changes %s (stored %g, given %g): only the "
                          "indentation (shape, indenter_diameter, indent_rate, h_over_r, "
-                         "unload, pi), threads, sample_interval and the settle/hold limits may "
+                         "unload, pi, dt_factor), threads, sample_interval and the settle/hold limits may "
                          "differ from the checkpoint's config",
                          path, what, va, vb);
     if (f->ov == OV_INDENT && indent_begun)
@@ -401,7 +401,9 @@ static int apply_override(dem_scene *sc, const dem_scene_config *ov, const char 
                          "%s: the override changes %s (stored %g, given %g) but the "
                          "checkpoint's indentation has already begun",
                          path, what, va, vb);
-    if (f->kind == K_PARAMS) *pi_changed = 1;
+    /* new indenter coefficients or time-step factor: interactions, k_max and dt anew */
+    if (f->kind == K_PARAMS || f->off == offsetof(dem_scene_config, dt_factor))
+      *pi_changed = 1;
   }
   dem_scene_config merged = *ov;
   if (dem_scene_config_check(&merged, err)) {
