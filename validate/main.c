@@ -1,7 +1,7 @@
 /* dem-validate — runs the thesis' ball-indentation conclusions as checks (docs/validation.md).
  *
  *   dem-validate [--tier quick|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
- *                [--threads N] [--level A] [--json] [--list] [--verbose]
+ *                [--threads N] [--level A] [--json] [--list] [--quiet]
  *
  * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
  * one line per case (PASS/FAIL with the numbers), or with --json the summary object on
@@ -22,7 +22,7 @@ static const char *prog = "dem-validate";
 static void usage(FILE *f) {
   fprintf(f,
           "usage: %s [--tier quick|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
-          "          [--threads N] [--level A] [--json] [--list] [--verbose]\n"
+          "          [--threads N] [--level A] [--json] [--list] [--quiet]\n"
           "  --tier     quick (default: reduced geometry, cases 1-3, minutes) or full\n"
           "             (thesis chapters 5-7 scale, all eleven cases) or smoke (tests only)\n"
           "  --case     run only these cases (see --list), at the tier's scale\n"
@@ -31,7 +31,8 @@ static void usage(FILE *f) {
           "  --threads  OpenMP threads per run (default 2)\n"
           "  --level    significance level of every test (default 0.05)\n"
           "  --json     print the summary object on stdout\n"
-          "  --list     name the cases and exit\n",
+          "  --list     name the cases and exit\n"
+          "  --quiet    no progress lines (stage, simulated time, ETA every 30 s) on stderr\n",
           prog);
 }
 
@@ -57,6 +58,7 @@ int main(int argc, char **argv) {
                                  {"json", no_argument, 0, 'J'},
                                  {"list", no_argument, 0, 'l'},
                                  {"verbose", no_argument, 0, 'v'},
+                                 {"quiet", no_argument, 0, 'q'},
                                  {"help", no_argument, 0, 'h'},
                                  {"version", no_argument, 0, 'V'},
                                  {0, 0, 0, 0}};
@@ -80,6 +82,7 @@ int main(int argc, char **argv) {
     case 'J': json = 1; break;
     case 'l': list = 1; break;
     case 'v': verbose = 1; break;
+    case 'q': verbose = -1; break;
     case 'h': usage(stdout); return CLI_EXIT_OK;
     case 'V': cli_print_version(prog); return CLI_EXIT_OK;
     default: cli_getopt_error(argv, &err); goto usage_error;

@@ -128,9 +128,11 @@ static int mkdir_p(const char *dir) {
 
 static void progress(const char *stage, double t, double frac, double eta, void *user) {
   const vh *h = user;
-  if (!h->verbose) return;
-  vh_log(h, "  %-11s t = %.4f s%s", stage, t, frac >= 0 ? "" : "");
-  (void)eta;
+  if (h->verbose < 0) return;
+  char f[32] = "", e[32] = "";
+  if (frac >= 0) snprintf(f, sizeof f, " %3.0f%%", 100.0 * frac);
+  if (eta >= 0) snprintf(e, sizeof e, ", stage ETA %.0f s", eta);
+  vh_log(h, "  %-11s t = %.4f s%s%s", stage, t, f, e);
 }
 
 static int same_bed(const vh_bed *a, const vh_bed *b) {
