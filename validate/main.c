@@ -1,6 +1,6 @@
 /* dem-validate — runs the thesis' ball-indentation conclusions as checks (docs/validation.md).
  *
- *   dem-validate [--tier quick|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
+ *   dem-validate [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
  *                [--threads N] [--level A] [--json] [--list] [--quiet]
  *
  * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
@@ -21,10 +21,11 @@ static const char *prog = "dem-validate";
 
 static void usage(FILE *f) {
   fprintf(f,
-          "usage: %s [--tier quick|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
+          "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
           "          [--threads N] [--level A] [--json] [--list] [--quiet]\n"
-          "  --tier     quick (default: reduced geometry, cases 1-3, minutes) or full\n"
-          "             (thesis chapters 5-7 scale, all eleven cases) or smoke (tests only)\n"
+          "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
+          "             same geometry, all eleven cases, ~1 h), full (thesis scale, all\n"
+          "             eleven cases, hours) or smoke (tests only)\n"
           "  --case     run only these cases (see --list), at the tier's scale\n"
           "  --out      report folder (default validation-<tier>)\n"
           "  --beds     folder of prepared beds, reused across invocations (default OUT/beds)\n"
@@ -96,7 +97,7 @@ int main(int argc, char **argv) {
   }
   const vh_tier *t = vh_tier_find(tier);
   if (!t) {
-    dem_err_set(&err, DEM_EINVAL, "--tier %s: unknown (allowed: quick, full, smoke)", tier);
+    dem_err_set(&err, DEM_EINVAL, "--tier %s: unknown (allowed: quick, medium, full, smoke)", tier);
     goto usage_error;
   }
   if (cases)
@@ -124,9 +125,8 @@ int main(int argc, char **argv) {
   h->level = level;
   h->verbose = verbose;
   h->t0 = vh_now();
-  snprintf(h->out, sizeof h->out, "%s", out ? out : (t == vh_tier_find("full")
-                                                         ? "validation-full"
-                                                         : "validation-quick"));
+  if (out) snprintf(h->out, sizeof h->out, "%s", out);
+  else snprintf(h->out, sizeof h->out, "validation-%s", t->name);
   if (beds) snprintf(h->beds_dir, sizeof h->beds_dir, "%s", beds);
   else snprintf(h->beds_dir, sizeof h->beds_dir, "%.500s/beds", h->out);
   mkdir(h->out, 0777);

@@ -23,20 +23,25 @@
 #define G_ACC 9.81   /* m/s^2 */
 #define D_MEAN 1e-3  /* m, thesis mean diameter */
 
-/* The tiers. quick: the geometry of the full tier scaled to about 0.6 (die 20 d, bed 12 d,
- * indenter 8 d; bed heights 8 and 12 d with an 8 d indenter keep the thesis' ratios
- * bed/indenter = 1.0 and 1.5 of its 13 and 20 mm beds under a 13 mm ball), cases 1-3.
- * full: thesis chapters 6/7 (bed 20 d, indenter 16 d) in a die of 30 d (the thesis' 45 d
- * costs 2.25x the particles; docs/validation.md gives the reason and the check), all cases. */
+/* The tiers (geometry in d; docs/validation.md gives the reasons).
+ * quick:  thesis geometry scaled by ~0.6 (die 20 d, bed 12 d, sphere 8 d: indenter/die 0.4
+ *         as the thesis' 16/45; bed heights 8 and 12 d under an 8 d ball keep the ratios
+ *         bed/indenter 1.0 and 1.5 of its 13 and 20 mm beds under a 13 mm ball); cases 1-3.
+ * medium: the quick geometry for all eleven cases (bed heights 8, 12, 18, 30 d = the thesis'
+ *         13, 20, 30, 50 scaled by 8/13; indenter sizes 4-10 d; replicate beds).
+ * full:   thesis scale (chapters 5-7: die 45 d, bed 20 d, sphere 16 d, bed heights 13, 20,
+ *         30, 50 d, sizes 7-22 d, the 25 d ball on the 13 d bed); hours on 2 cores.
+ * smoke:  the smallest scene that exercises every path (tests; not a validation). */
 static const vh_tier tiers[] = {
     {"quick", 20.0, 12.0, 8.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
      2, {8.0, 12.0}, 8.0, 4, {4.0, 6.0, 8.0, 10.0}, 8.0, 12.0, 1, 0x7},
-    /* smoke: the smallest scene that exercises every path (tests; not a validation) */
+    {"medium", 20.0, 12.0, 8.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
+     4, {8.0, 12.0, 18.0, 30.0}, 8.0, 6, {4.0, 5.0, 6.0, 7.0, 8.0, 10.0}, 7.0, 12.0, 2, 0x7ff},
+    {"full", 45.0, 20.0, 16.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
+     4, {13.0, 20.0, 30.0, 50.0}, 13.0, 6, {7.0, 10.0, 13.0, 16.0, 19.0, 22.0}, 16.0, 25.0, 2,
+     0x7ff},
     {"smoke", 10.0, 6.0, 4.0, 0.2, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
      2, {4.0, 6.0}, 4.0, 3, {3.0, 4.0, 5.0}, 4.0, 7.0, 1, 0x7},
-    {"full", 30.0, 20.0, 16.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
-     4, {13.0, 20.0, 30.0, 50.0}, 13.0, 6, {7.0, 10.0, 13.0, 16.0, 19.0, 22.0}, 16.0, 22.0, 2,
-     0x7ff},
 };
 
 const vh_tier *vh_tier_find(const char *name) {
