@@ -178,6 +178,7 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
       (rc = num(&cx, co, "hold_tol", 1e-4, 0.5, "-", &c->hold_tol)) ||
       (rc = word(&cx, in, "shape", shapes, &shape)) ||
       (rc = num(&cx, in, "diameter", 0.5, 1000, "d", &c->indenter_diameter)) ||
+      (rc = num(&cx, in, "length", 0, 1000, "d", &c->indenter_length)) ||
       (rc = num(&cx, in, "strain_rate", 0, 1e4, "1/s", &c->indent_rate)) ||
       (rc = num(&cx, in, "h_over_r", 0.01, 2, "-", &c->h_over_r)) ||
       (rc = num(&cx, in, "unload", 0, 1, "", &unload)) ||
