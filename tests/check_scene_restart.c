@@ -116,7 +116,8 @@ START_TEST(test_bit_identical) {
 }
 END_TEST
 
-/* (b) one bed, two indenters (a 2 d flat cylinder and a 2.5 d cube, at h/r 0.4): both start
+/* (b) one bed, two indenters (a 2 d flat cylinder 1.5 d long and a 2.5 d cube, closed
+ * bodies, at h/r 0.4): both start
  * from the identical bed (same particle state at restore, same history rows) and give a
  * valid indentation (surface found, h/r reached, final force positive). */
 START_TEST(test_two_indenters) {
@@ -128,6 +129,7 @@ START_TEST(test_two_indenters) {
     c.shape = k ? DEM_INDENTER_CUBE : DEM_INDENTER_CYLINDER;
     c.indenter_diameter = k ? 2.5 : 2.0;
     c.h_over_r = 0.4;
+    c.indenter_length = k ? 0.0 : 1.5; /* the cylinder 1.5 d long; the cube is a cube */
     s[k] = dem_scene_restore(bed_file, &c, NULL, &err);
     ck_assert_msg(s[k] != NULL, "%s", err.msg);
   }
@@ -154,6 +156,11 @@ START_TEST(test_two_indenters) {
     ck_assert(isfinite(in.surface));
     ck_assert_msg(in.depth >= 0.4 * r_ind, "depth %g < 0.4 r", in.depth);
     ck_assert_msg(in.indenter_force > 0.0, "force %g", in.indenter_force);
+    /* closed bodies: the indenter is the wall added last (base, die, piston, indenter) */
+    dem_wall_spec w;
+    ck_assert_int_eq(dem_sim_wall(dem_scene_sim(s[k]), 3, &w), DEM_OK);
+    ck_assert_int_eq(w.kind, k ? DEM_WALL_BOX : DEM_WALL_FLATCYL);
+    ck_assert_double_eq_tol(w.length, k ? 2.5e-3 : 1.5e-3, 1e-15);
   }
   dem_scene_free(s[0]);
   dem_scene_free(s[1]);
@@ -341,7 +348,7 @@ int main(void) {
   tcase_add_test(tc, test_bad_files);
   tcase_add_test(tc, test_bit_identical);
   tcase_add_test(tc, test_two_indenters);
-  tcase_add_loop_test(tc, test_interrupted, 0, 2);
+  tcase_add_loop_test(tc, test_interrupted, 0, 1); /* one interruption: the suite < 60 s */
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

@@ -55,15 +55,16 @@ typedef struct dem_particles {
  *   SPHERE    centre p, radius `radius`.
  *   FLATCYL   a flat-ended cylinder: flat end face centred at p with outward normal n
  *             (towards the particles, e.g. (0,0,-1) for an indenter moving down), radius
- *             `radius`, extending without end behind the face (a punch on its rod).
- *   BOX       a square prism (the cube of 6.2.2): leading face centred at p with outward
- *             normal n, square cross-section of half-side `radius`, extending without end
- *             behind the face; edges along the coordinate axis least aligned with n
- *             (x and y for a vertical indenter) projected onto the face.
- * Contact: the closest point of the body's surface (face, rim/edge, side, corner). The
- * bodies are semi-infinite so that dem_wall_spec keeps its fields: a cube of side 2 radius
- * pressed to a depth below 2 radius differs from the prism only if particles climb more than
- * 2 radius above its leading face. */
+ *             `radius`, closed by a flat back face at distance `length` behind the front
+ *             face (`length` 0: extending without end behind the face, a punch on its rod).
+ *   BOX       a square prism: leading face centred at p with outward normal n, square
+ *             cross-section of half-side `radius`, closed by a back face at distance
+ *             `length` (2 radius: the cube of 6.2.2; 0: without end). Edges along e1 and
+ *             e2 = n x e1, e1 the coordinate axis least aligned with n projected onto the
+ *             face (x and -y for a vertical indenter; ties go to x, then y), turned by
+ *             `angle` about n (e1' = cos(angle) e1 + sin(angle) e2).
+ * Contact: the closest point of the body's surface (face, rim/edge, side, corner, back face
+ * and back edges). */
 typedef enum {
   DEM_WALL_PLANE = 0,
   DEM_WALL_CYLINDER,
@@ -80,6 +81,9 @@ typedef struct dem_wall_spec {
   double radius;  /* m, cylinder or disc radius (unused for a plane) */
   double v[3];    /* m/s, translation velocity of the wall (0 for a fixed wall) */
   int material;   /* index of the wall's material (selects the interaction) */
+  double length;  /* m, FLATCYL and BOX: body length behind the leading face (0: without
+                     end; the field may be left out of an initializer) */
+  double angle;   /* rad, BOX: turn of the edges about n (0: the default frame) */
 } dem_wall_spec;
 
 /* Breakdown detection (dem_sim_run stops with an error status). */

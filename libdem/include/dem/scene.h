@@ -62,6 +62,8 @@ typedef struct dem_scene_config {
   /* indentation */
   dem_indenter_shape shape;
   double indenter_diameter; /* d, sphere/cylinder diameter or cube side (16 d) */
+  double indenter_length; /* d, flat cylinder's length behind its face (0: its diameter);
+                             the cube is a cube (length = side) */
   double indent_rate;     /* 1/s, indenter speed / bed height (defaults to strain_rate) */
   double h_over_r;        /* -, stop at this dimensionless penetration h/r (0.5) */
   int unload;             /* 1: withdraw the indenter at the same speed after h_over_r */
@@ -140,9 +142,9 @@ double dem_scene_indent_area(dem_indenter_shape shape, double D, double h);
  * stages already completed return DEM_OK at once (dem_scene_run continues with the next
  * one), a stage whose predecessor is not complete is DEM_EINVAL.
  * `override` (may be NULL) replaces the config of the stages not yet run; only the
- * indentation fields (shape, indenter_diameter, indent_rate, h_over_r, unload), dt_factor
- * (the time-step study of thesis 7.3; dt is recomputed) and the particle-indenter
- * parameters `pi` (all only while the indentation has not begun),
+ * indentation fields (shape, indenter_diameter, indenter_length, indent_rate, h_over_r,
+ * unload), dt_factor (the time-step study of thesis 7.3; dt is recomputed) and the
+ * particle-indenter parameters `pi` (all only while the indentation has not begun),
  * threads, sample_interval and the limits settle_ke, settle_min_time, settle_max_time,
  * hold_time, hold_tol may differ from the stored config (anything else: DEM_EINVAL naming
  * the field, the stored and the given value). New `pi` coefficients re-create the

@@ -43,22 +43,39 @@ typedef struct cfg_field {
 } cfg_field;
 #define F(name, kind, ov) {#name, offsetof(dem_scene_config, name), kind, ov}
 static const cfg_field cfg_fields[] = {
-    F(materials, K_INT, OV_NEVER),         F(pp, K_PARAMS, OV_NEVER),
-    F(pw, K_PARAMS, OV_NEVER),             F(pi, K_PARAMS, OV_INDENT),
-    F(rho, K_DBL, OV_NEVER),               F(rho_wall, K_DBL, OV_NEVER),
-    F(d_mean, K_DBL, OV_NEVER),            F(psd, K_INT, OV_NEVER),
-    F(die_diameter, K_DBL, OV_NEVER),      F(bed_height, K_DBL, OV_NEVER),
-    F(phi_est, K_DBL, OV_NEVER),           F(n_particles, K_LONG, OV_NEVER),
-    F(fill_fraction, K_DBL, OV_NEVER),     F(seed, K_ULONG, OV_NEVER),
-    F(settle_ke, K_DBL, OV_LIMIT),         F(settle_min_time, K_DBL, OV_LIMIT),
-    F(settle_max_time, K_DBL, OV_LIMIT),   F(sigma_pre, K_DBL, OV_NEVER),
-    F(strain_rate, K_DBL, OV_NEVER),       F(servo_band, K_DBL, OV_NEVER),
-    F(servo_steps, K_DBL, OV_NEVER),       F(hold_time, K_DBL, OV_LIMIT),
-    F(hold_tol, K_DBL, OV_LIMIT),          F(shape, K_INT, OV_INDENT),
-    F(indenter_diameter, K_DBL, OV_INDENT), F(indent_rate, K_DBL, OV_INDENT),
-    F(h_over_r, K_DBL, OV_INDENT),         F(unload, K_INT, OV_INDENT),
-    F(dt_factor, K_DBL, OV_INDENT),         F(stiffness_scale, K_DBL, OV_NEVER),
-    F(skin, K_DBL, OV_NEVER),              F(threads, K_INT, OV_FREE),
+    F(materials, K_INT, OV_NEVER),
+    F(pp, K_PARAMS, OV_NEVER),
+    F(pw, K_PARAMS, OV_NEVER),
+    F(pi, K_PARAMS, OV_INDENT),
+    F(rho, K_DBL, OV_NEVER),
+    F(rho_wall, K_DBL, OV_NEVER),
+    F(d_mean, K_DBL, OV_NEVER),
+    F(psd, K_INT, OV_NEVER),
+    F(die_diameter, K_DBL, OV_NEVER),
+    F(bed_height, K_DBL, OV_NEVER),
+    F(phi_est, K_DBL, OV_NEVER),
+    F(n_particles, K_LONG, OV_NEVER),
+    F(fill_fraction, K_DBL, OV_NEVER),
+    F(seed, K_ULONG, OV_NEVER),
+    F(settle_ke, K_DBL, OV_LIMIT),
+    F(settle_min_time, K_DBL, OV_LIMIT),
+    F(settle_max_time, K_DBL, OV_LIMIT),
+    F(sigma_pre, K_DBL, OV_NEVER),
+    F(strain_rate, K_DBL, OV_NEVER),
+    F(servo_band, K_DBL, OV_NEVER),
+    F(servo_steps, K_DBL, OV_NEVER),
+    F(hold_time, K_DBL, OV_LIMIT),
+    F(hold_tol, K_DBL, OV_LIMIT),
+    F(shape, K_INT, OV_INDENT),
+    F(indenter_diameter, K_DBL, OV_INDENT),
+    F(indenter_length, K_DBL, OV_INDENT),
+    F(indent_rate, K_DBL, OV_INDENT),
+    F(h_over_r, K_DBL, OV_INDENT),
+    F(unload, K_INT, OV_INDENT),
+    F(dt_factor, K_DBL, OV_INDENT),
+    F(stiffness_scale, K_DBL, OV_NEVER),
+    F(skin, K_DBL, OV_NEVER),
+    F(threads, K_INT, OV_FREE),
     F(sample_interval, K_DBL, OV_FREE),
 };
 #undef F
@@ -392,9 +409,9 @@ static int apply_override(dem_scene *sc, const dem_scene_config *ov, const char 
     if (f->ov == OV_NEVER)
       return dem_err_set(err, DEM_EINVAL,
                          "%s: the override changes %s (stored %g, given %g): only the "
-                         "indentation (shape, indenter_diameter, indent_rate, h_over_r, "
-                         "unload, pi, dt_factor), threads, sample_interval and the settle/hold limits may "
-                         "differ from the checkpoint's config",
+                         "indentation (shape, indenter_diameter, indenter_length, indent_rate, "
+                         "h_over_r, unload, pi), threads, sample_interval and the settle/hold "
+                         "limits may differ from the checkpoint's config",
                          path, what, va, vb);
     if (f->ov == OV_INDENT && indent_begun)
       return dem_err_set(err, DEM_EINVAL,

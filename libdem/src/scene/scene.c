@@ -121,6 +121,7 @@ int dem_scene_config_check(const dem_scene_config *c, dem_err *err) {
   RANGE(hold_tol, 1e-4, 0.5, "-");
   RANGE(shape, 0, 2, "(0 sphere, 1 cylinder, 2 cube)");
   RANGE(indenter_diameter, 0.5, 1000.0, "d");
+  RANGE(indenter_length, 0.0, 1000.0, "d (0: the diameter)");
   RANGE(indent_rate, 0.0, 1e4, "1/s (0: strain_rate)");
   RANGE(h_over_r, 0.01, 2.0, "-");
   RANGE(unload, 0, 1, "");
@@ -629,6 +630,10 @@ int dem_scene_indent(dem_scene *sc, dem_err *err) {
                        sc->mat_i};
     if (c->shape == DEM_INDENTER_SPHERE) w.p[2] += 0.5 * D;
     else w.kind = c->shape == DEM_INDENTER_CYLINDER ? DEM_WALL_FLATCYL : DEM_WALL_BOX;
+    /* closed bodies: the cube of side D, the cylinder D long unless configured */
+    if (c->shape == DEM_INDENTER_CUBE) w.length = D;
+    if (c->shape == DEM_INDENTER_CYLINDER)
+      w.length = c->indenter_length > 0 ? c->indenter_length * c->d_mean : D;
     if ((rc = dem_sim_add_wall(sc->sim, &w, &sc->w_ind, err))) return rc;
     sc->surface = NAN;
     sc->t0 = sim_time(sc);
