@@ -26,9 +26,20 @@ struct dem_scene {
   double next_snap;          /* s */
   double last_progress;      /* s of wall clock */
   double stage_wall0;        /* s of wall clock at the stage start */
+  /* contacts and stresses (stress.c) */
+  dem_sim_contact *cbuf;     /* engine contact export */
+  size_t ccap;
+  size_t *v_part;            /* dem_contact_view arrays: every pair twice, walls once */
+  double *v_point, *v_force;
+  size_t vcap;
 };
 
 int scene_fill(dem_scene *sc, dem_err *err);
+/* stress.c: the stress columns of a row (bin_p, bin_q, bin_phi, base_p; NaN where not
+ * defined) and the buffers' release. */
+#define SCENE_NSTRESS 4
+int scene_stress_row(dem_scene *sc, double out[SCENE_NSTRESS], dem_err *err);
+void scene_stress_free(dem_scene *sc);
 void scene_psd_moments(dem_scene_psd psd, double d_mean, double *mean, double *sd);
 
 #endif
