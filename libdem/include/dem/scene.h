@@ -142,14 +142,30 @@ double dem_scene_indent_area(dem_indenter_shape shape, double D, double h);
 
 /* ---- checkpoints of a scene and reuse of a prepared bed (issue 5) ---------------------
  * A scene checkpoint is an engine checkpoint (dem/checkpoint.h) whose caller blob holds the
- * scene state: the config, the stage reached, the bed measurements, the surface and the time
- * series so far. dem_scene_save writes it (temporary file + rename); dem_scene_restore reads
- * it back into a new scene that continues bit-identically (same thread count) with the
- * stored config. `override` (may be NULL) replaces the config of the stages not yet run;
- * only the indentation fields (shape, indenter_diameter, indent_rate, h_over_r, unload), the
- * particle-indenter parameters `pi`, threads, sample_interval and the settle/consolidation
- * limits may differ from the stored config (anything else: DEM_EINVAL naming the field).
- * This is how one consolidated bed serves many indentations. */
+ * scene state: the config, the stage reached, the bed measurements, the surface, the state
+ * of a stage in progress and the time series so far (libdem/src/scene/restart.c).
+ * dem_scene_save writes it (temporary file + rename) at any step boundary: between stages,
+ * or after a stage returned DEM_EINTERRUPTED (the engine's interrupt flag, see
+ * dem_sim_set_interrupt_flag on dem_scene_sim): an interrupted stage keeps its progress in
+ * the scene and continues exactly where it stopped when called again, in the same process
+ * or after a restore. dem_scene_restore reads it back into a new scene that continues
+ * bit-identically (same thread count) with the stored config; the stage functions of the
+ * stages already completed return DEM_OK at once (dem_scene_run continues with the next
+ * one), a stage whose predecessor is not complete is DEM_EINVAL.
+ * `override` (may be NULL) replaces the config of the stages not yet run; only the
+ * indentation fields (shape, indenter_diameter, indent_rate, h_over_r, unload), dt_factor
+ * (the time-step study of thesis 7.3; dt is recomputed) and the particle-indenter
+ * parameters `pi` (all only while the indentation has not begun),
+ * threads, sample_interval, output_stress and the limits settle_ke, settle_min_time, settle_max_time,
+ * hold_time, hold_tol may differ from the stored config (anything else: DEM_EINVAL naming
+ * the field, the stored and the given value). New `pi` coefficients re-create the
+ * particle-indenter interaction (stiffness_scale applied) and re-derive k_max and dt from
+ * the three interactions (dt changes only if the indenter becomes the stiffest contact).
+ * This is how one consolidated bed serves many indentations.
+ * Errors of restore name the file: DEM_EIO / DEM_EPARSE / DEM_EUNSUPPORTED of the engine
+ * checkpoint (missing, truncated, corrupted, other version), DEM_EINVAL for an engine
+ * checkpoint without a scene state, DEM_EPARSE for a scene state cut short or missing a
+ * field, DEM_EUNSUPPORTED for another scene-state version. */
 typedef enum {
   DEM_SCENE_STAGE_NONE = -1, /* created, not filled */
   DEM_SCENE_STAGE_FILLED = 0,
