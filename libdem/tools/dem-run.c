@@ -157,7 +157,7 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
   static const char *const psds[] = {"table6.1", "table5.1", NULL};
   static const char *const shapes[] = {"sphere", "cylinder", "cube", NULL};
   int psd = (int)c->psd, shape = 0;
-  double seed = (double)c->seed, np = 0, unload = 0, thr = 1;
+  double seed = (double)c->seed, np = 0, unload = 0, thr = 1, ostress = c->output_stress;
   if ((rc = word(&cx, bed, "psd", psds, &psd)) ||
       (rc = num(&cx, bed, "d_mean", 1e-7, 1.0, "m", &c->d_mean)) ||
       (rc = num(&cx, bed, "die_diameter", 3, 1000, "d", &c->die_diameter)) ||
@@ -188,6 +188,7 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
       (rc = num(&cx, nu, "threads", 1, 64, "", &thr)) ||
       (rc = num(&cx, ou, "sample_interval", 0, 10, "s", &c->sample_interval)) ||
       (rc = num(&cx, ou, "snapshot_interval", 0, 1e3, "s", snap_dt)) ||
+      (rc = num(&cx, ou, "stress", 0, 1, "(true/false)", &ostress)) ||
       (rc = coeffs(&cx, config_setting_get_member(root, "particle"), &c->pp)) ||
       (rc = coeffs(&cx, config_setting_get_member(root, "wall"), &c->pw)) ||
       (rc = coeffs(&cx, config_setting_get_member(root, "indenter"), &c->pi)))
@@ -198,6 +199,7 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
   c->n_particles = (long)np;
   c->unload = unload != 0;
   c->threads = (int)thr;
+  c->output_stress = ostress != 0;
 out:
   config_destroy(&cf);
   return rc;

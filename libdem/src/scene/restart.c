@@ -77,6 +77,7 @@ static const cfg_field cfg_fields[] = {
     F(skin, K_DBL, OV_NEVER),
     F(threads, K_INT, OV_FREE),
     F(sample_interval, K_DBL, OV_FREE),
+    F(output_stress, K_INT, OV_FREE),
 };
 #undef F
 #define NCFG (sizeof cfg_fields / sizeof cfg_fields[0])

@@ -95,6 +95,7 @@ void dem_scene_config_defaults(dem_scene_config *c, dem_scene_materials m) {
   c->skin = 0.1;
   c->threads = 1;
   c->sample_interval = 1e-4;
+  c->output_stress = 1;
 }
 
 #define RANGE(field, lo, hi, unit)                                                           \
@@ -130,6 +131,7 @@ int dem_scene_config_check(const dem_scene_config *c, dem_err *err) {
   RANGE(skin, 0.0, 2.0, "d");
   RANGE(threads, 1, 64, "");
   RANGE(sample_interval, 0.0, 10.0, "s");
+  RANGE(output_stress, 0, 1, "");
   if (c->indenter_diameter >= c->die_diameter)
     return dem_err_set(err, DEM_ERANGE,
                        "scene: indenter_diameter = %g d must be below die_diameter = %g d",
@@ -186,10 +188,11 @@ fail:
 
 static const char *const series_names[] = {
     "t", "stage", "piston_z", "piston_stress", "indenter_z", "depth", "h_over_r",
-    "indenter_force", "hardness", "kinetic_energy", "contacts", "wall_contacts"};
-static const char *const series_units[] = {"s", "-", "m", "Pa", "m", "m", "-",
-                                           "N", "Pa", "J", "-", "-"};
-#define NSERIES 12
+    "indenter_force", "hardness", "kinetic_energy", "contacts", "wall_contacts",
+    "bin_p", "bin_q", "bin_phi", "base_p"};
+static const char *const series_units[] = {"s", "-", "m", "Pa", "m", "m", "-", "N",
+                                           "Pa", "J", "-", "-", "Pa", "Pa", "-", "Pa"};
+#define NSERIES 16 /* the last SCENE_NSTRESS from scene_stress_row (stress.c) */
 
 dem_table *scene_series_create(dem_err *err) {
   return dem_table_create(NSERIES, series_names, series_units, err);
@@ -254,6 +257,7 @@ fail:
 
 void dem_scene_free(dem_scene *sc) {
   if (!sc) return;
+  scene_stress_free(sc);
   dem_sim_free(sc->sim);
   dem_table_free(sc->series);
   free(sc);
@@ -354,6 +358,8 @@ static int record(dem_scene *sc, dem_err *err) {
                          dem_sim_kinetic_energy(sc->sim),
                          (double)st.contacts,
                          (double)st.wall_contacts};
+  int rc = scene_stress_row(sc, row + NSERIES - SCENE_NSTRESS, err);
+  if (rc) return rc;
   return dem_table_append(sc->series, row, err);
 }
 

@@ -36,6 +36,12 @@ struct dem_scene {
   double t_in, f_set, gain;  /* servo: band entry time (s), set point (N), gain (m/(N s)) */
   int resume;                /* 1: an advance was interrupted; finish it first */
   long pending;              /* steps left of the interrupted advance */
+  /* contacts and stresses (stress.c) */
+  dem_sim_contact *cbuf;     /* engine contact export */
+  size_t ccap;
+  size_t *v_part;            /* dem_contact_view arrays: every pair twice, walls once */
+  double *v_point, *v_force;
+  size_t vcap;
 };
 
 /* scene.c: the three interactions from cfg.pp/pw/pi (stiffness_scale applied), setting
@@ -44,6 +50,11 @@ int scene_interactions(dem_scene *sc, dem_err *err);
 dem_table *scene_series_create(dem_err *err);
 
 int scene_fill(dem_scene *sc, dem_err *err);
+/* stress.c: the stress columns of a row (bin_p, bin_q, bin_phi, base_p; NaN where not
+ * defined) and the buffers' release. */
+#define SCENE_NSTRESS 4
+int scene_stress_row(dem_scene *sc, double out[SCENE_NSTRESS], dem_err *err);
+void scene_stress_free(dem_scene *sc);
 void scene_psd_moments(dem_scene_psd psd, double d_mean, double *mean, double *sd);
 
 #endif
