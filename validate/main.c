@@ -161,6 +161,9 @@ int main(int argc, char **argv) {
     fflush(stdout);
     if (r->status == VH_FAIL) any_fail = 1;
     if (r->status == VH_ERROR) any_err = 1;
+    /* the report so far after every case: a long run interrupted later keeps its results */
+    dem_err e2 = {0};
+    if (vh_report_write(h, res, nres, vh_now() - h->t0, &e2)) cli_error(prog, &e2);
   }
   double wall = vh_now() - h->t0;
   if (vh_report_write(h, res, nres, wall, &err)) {
