@@ -31,11 +31,15 @@
  *         13, 20, 30, 50 scaled by 8/13; indenter sizes 4-10 d; replicate beds).
  * full:   thesis scale (chapters 5-7: die 45 d, bed 20 d, sphere 16 d, bed heights 13, 20,
  *         30, 50 d, sizes 7-22 d, the 25 d ball on the 13 d bed); hours on 2 cores.
- * smoke:  the smallest scene that exercises every path (tests; not a validation). */
+ * smoke:  the smallest scene that exercises every path (tests; not a validation).
+ * Plateau window: h/r 0.2-0.5 (thesis: stress constant from ~0.1, hardness from ~0.35-0.4,
+ * stresses rise again beyond 0.5), starting no earlier than one particle diameter of depth
+ * under the reference sphere (the thesis shows data only beyond one diameter, 5.2): 0.25
+ * for the 8 d sphere of quick/medium. */
 static const vh_tier tiers[] = {
-    {"quick", 20.0, 12.0, 8.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
+    {"quick", 20.0, 12.0, 8.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.25, 0.5, 0.02, 0.1,
      2, {8.0, 12.0}, 8.0, 4, {4.0, 6.0, 8.0, 10.0}, 8.0, 12.0, 1, 0x7},
-    {"medium", 20.0, 12.0, 8.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
+    {"medium", 20.0, 12.0, 8.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.25, 0.5, 0.02, 0.1,
      4, {8.0, 12.0, 18.0, 30.0}, 8.0, 6, {4.0, 5.0, 6.0, 7.0, 8.0, 10.0}, 7.0, 12.0, 2, 0x7ff},
     {"full", 45.0, 20.0, 16.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
      4, {13.0, 20.0, 30.0, 50.0}, 13.0, 6, {7.0, 10.0, 13.0, 16.0, 19.0, 22.0}, 16.0, 25.0, 2,
