@@ -145,7 +145,7 @@ static void agree_all(vh *h, vh_check *c, const int *idx, int n, const char *con
   dem_comparison zc;
   dem_err e = {0};
   dem_compare_means(1, 1, 0, 1, h->level / (npairs ? npairs : 1), DEM_TEST_TWO_SIDED, &zc, &e);
-  snprintf(c->ours, sizeof c->ours, "H [kPa]: %s; max |z| = %.2f (%s), crit %.2f", buf,
+  snprintf(c->ours, sizeof c->ours, "H [kPa]: %.110s; max |z| = %.2f (%.40s), crit %.2f", buf,
            fabs(zmax), worst, zc.z_crit);
   c->status = pass(all);
 }

@@ -347,7 +347,7 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
       snprintf(c[6], 96, "%.2f", u->surface_sd / 1e-3);
       snprintf(c[7], 96, "%ld", u->steps);
       snprintf(c[8], 96, "%.0f", u->wall_s);
-      snprintf(c[9], 96, "%s", u->status ? u->error : "ok");
+      snprintf(c[9], 96, "%.95s", u->status ? u->error : "ok");
       const char *cells[10];
       for (int j = 0; j < 10; j++) cells[j] = c[j];
       d_row(&d, 0, 10, cells);
