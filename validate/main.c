@@ -6,9 +6,11 @@
  * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
  * one line per case (PASS/FAIL with the numbers), or with --json the summary object on
  * stdout. Progress goes to stderr. Exit status: 0 every case passed (or had nothing to
- * check), 3 a criterion failed, 1 a run or the report failed, 2 usage error.
+ * check), 3 a criterion failed, 4 a criterion that passed in the --baseline file failed,
+ * 1 a run or the report failed, 2 usage error.
  */
 #include <getopt.h>
+#include <jansson.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,7 +24,7 @@ static const char *prog = "dem-validate";
 static void usage(FILE *f) {
   fprintf(f,
           "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
-          "          [--threads N] [--level A] [--json] [--list] [--quiet]\n"
+          "          [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]\n"
           "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
           "             same geometry, all eleven cases, ~1 h), full (thesis scale, all\n"
           "             eleven cases, hours) or smoke (tests only)\n"
@@ -33,8 +35,52 @@ static void usage(FILE *f) {
           "  --level    significance level of every test (default 0.05)\n"
           "  --json     print the summary object on stdout\n"
           "  --list     name the cases and exit\n"
-          "  --quiet    no progress lines (stage, simulated time, ETA every 30 s) on stderr\n",
+          "  --quiet    no progress lines (stage, simulated time, ETA every 30 s) on stderr\n"
+          "  --baseline FILE  a summary.json of an earlier run: exit 4 if a criterion that\n"
+          "             passed there fails now (regression check for CI)\n",
           prog);
+}
+
+/* Regressions against a baseline summary.json (--baseline): every criterion that passed
+ * there must pass now (matched by case name and criterion text). Returns the number of
+ * regressions (printed), or -1 with err set if the file cannot be read. */
+static int regressions(const char *file, const vh_case_result *res, int nres, dem_err *err) {
+  json_error_t je;
+  json_t *root = json_load_file(file, 0, &je);
+  if (!root) {
+    dem_err_set(err, DEM_EIO, "--baseline %s:%d: %s", file, je.line, je.text);
+    return -1;
+  }
+  int nreg = 0, ncmp = 0;
+  json_t *cases = json_object_get(root, "cases"), *c;
+  size_t i;
+  json_array_foreach(cases, i, c) {
+    const char *name = json_string_value(json_object_get(c, "name"));
+    json_t *checks = json_object_get(c, "checks"), *k;
+    size_t j;
+    json_array_foreach(checks, j, k) {
+      const char *what = json_string_value(json_object_get(k, "criterion"));
+      const char *st = json_string_value(json_object_get(k, "status"));
+      if (!name || !what || !st || strcmp(st, "PASS") != 0) continue;
+      for (int r = 0; r < nres; r++) {
+        if (strcmp(res[r].name, name) != 0) continue;
+        for (int q = 0; q < res[r].nchecks; q++) {
+          if (strcmp(res[r].checks[q].what, what) != 0) continue;
+          ncmp++;
+          if (res[r].checks[q].status != VH_PASS) {
+            fprintf(stderr, "%s: regression: %s: \"%s\" passed in %s, now %s (%s)\n", prog,
+                    name, what, file, vh_status_name(res[r].checks[q].status),
+                    res[r].checks[q].ours);
+            nreg++;
+          }
+        }
+      }
+    }
+  }
+  json_decref(root);
+  fprintf(stderr, "%s: %d criteria that passed in %s compared, %d regressions\n", prog, ncmp,
+          file, nreg);
+  return nreg;
 }
 
 static int selected(const char *list, const char *name) {
@@ -60,10 +106,11 @@ int main(int argc, char **argv) {
                                  {"list", no_argument, 0, 'l'},
                                  {"verbose", no_argument, 0, 'v'},
                                  {"quiet", no_argument, 0, 'q'},
+                                 {"baseline", required_argument, 0, 'B'},
                                  {"help", no_argument, 0, 'h'},
                                  {"version", no_argument, 0, 'V'},
                                  {0, 0, 0, 0}};
-  const char *tier = "quick", *cases = NULL, *out = NULL, *beds = NULL;
+  const char *tier = "quick", *cases = NULL, *out = NULL, *beds = NULL, *baseline = NULL;
   double threads = 2, level = 0.05;
   int json = 0, list = 0, verbose = 0, o;
   dem_err err = {0};
@@ -84,6 +131,7 @@ int main(int argc, char **argv) {
     case 'l': list = 1; break;
     case 'v': verbose = 1; break;
     case 'q': verbose = -1; break;
+    case 'B': baseline = optarg; break;
     case 'h': usage(stdout); return CLI_EXIT_OK;
     case 'V': cli_print_version(prog); return CLI_EXIT_OK;
     default: cli_getopt_error(argv, &err); goto usage_error;
@@ -174,6 +222,11 @@ int main(int argc, char **argv) {
            h->out, wall);
   }
   if (json) vh_json_print(h, res, nres, wall, stdout);
+  int nreg = 0;
+  if (baseline && (nreg = regressions(baseline, res, nres, &err)) < 0) {
+    cli_error(prog, &err);
+    any_err = 1;
+  }
   for (int i = 0; i < h->nruns; i++) {
     vh_run *u = &h->runs[i];
     free(u->hr), free(u->H), free(u->bin_p), free(u->bin_q), free(u->bin_phi);
@@ -181,7 +234,7 @@ int main(int argc, char **argv) {
   }
   free(res);
   free(h);
-  return any_err ? CLI_EXIT_RUN : any_fail ? 3 : CLI_EXIT_OK;
+  return any_err ? CLI_EXIT_RUN : nreg > 0 ? 4 : any_fail ? 3 : CLI_EXIT_OK;
 
 usage_error:
   cli_error(prog, &err);
