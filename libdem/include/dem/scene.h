@@ -143,8 +143,8 @@ double dem_scene_indent_area(dem_indenter_shape shape, double D, double h);
  * one), a stage whose predecessor is not complete is DEM_EINVAL.
  * `override` (may be NULL) replaces the config of the stages not yet run; only the
  * indentation fields (shape, indenter_diameter, indenter_length, indent_rate, h_over_r,
- * unload) and the particle-indenter parameters `pi` (both only while the indentation has
- * not begun),
+ * unload), dt_factor (the time-step study of thesis 7.3; dt is recomputed) and the
+ * particle-indenter parameters `pi` (all only while the indentation has not begun),
  * threads, sample_interval and the limits settle_ke, settle_min_time, settle_max_time,
  * hold_time, hold_tol may differ from the stored config (anything else: DEM_EINVAL naming
  * the field, the stored and the given value). New `pi` coefficients re-create the

@@ -72,7 +72,7 @@ static const cfg_field cfg_fields[] = {
     F(indent_rate, K_DBL, OV_INDENT),
     F(h_over_r, K_DBL, OV_INDENT),
     F(unload, K_INT, OV_INDENT),
-    F(dt_factor, K_DBL, OV_NEVER),
+    F(dt_factor, K_DBL, OV_INDENT),
     F(stiffness_scale, K_DBL, OV_NEVER),
     F(skin, K_DBL, OV_NEVER),
     F(threads, K_INT, OV_FREE),
@@ -410,15 +410,17 @@ static int apply_override(dem_scene *sc, const dem_scene_config *ov, const char 
       return dem_err_set(err, DEM_EINVAL,
                          "%s: the override changes %s (stored %g, given %g): only the "
                          "indentation (shape, indenter_diameter, indenter_length, indent_rate, "
-                         "h_over_r, unload, pi), threads, sample_interval and the settle/hold "
-                         "limits may differ from the checkpoint's config",
+                         "h_over_r, unload, pi, dt_factor), threads, sample_interval and the "
+                         "settle/hold limits may differ from the checkpoint's config",
                          path, what, va, vb);
     if (f->ov == OV_INDENT && indent_begun)
       return dem_err_set(err, DEM_EINVAL,
                          "%s: the override changes %s (stored %g, given %g) but the "
                          "checkpoint's indentation has already begun",
                          path, what, va, vb);
-    if (f->kind == K_PARAMS) *pi_changed = 1;
+    /* new indenter coefficients or time-step factor: interactions, k_max and dt anew */
+    if (f->kind == K_PARAMS || f->off == offsetof(dem_scene_config, dt_factor))
+      *pi_changed = 1;
   }
   dem_scene_config merged = *ov;
   if (dem_scene_config_check(&merged, err)) {
@@ -536,6 +538,14 @@ dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
       memcpy(msg, err->msg, sizeof msg);
       dem_err_set(err, err->code, "%s: override: %s", path, msg);
       goto fail;
+    }
+    /* inside the consolidation servo: its gain from the new k_max and dt (scene.c) */
+    if (sc->reached == DEM_SCENE_STAGE_SETTLED && sc->sub == 2) {
+      const double A = M_PI * sc->die_radius * sc->die_radius, dm = sc->cfg.d_mean;
+      sc->gain = 1.0 / (A / (dm * dm) * sc->k_max * sc->cfg.servo_steps * sc->dt);
+      if (dem_sim_set_wall_servo(sc->sim, sc->w_piston, sc->f_set, sc->gain, sc->v_piston,
+                                 err))
+        goto fail;
     }
   }
   if (dem_sim_set_threads(sc->sim, sc->cfg.threads, err)) goto fail;
