@@ -23,7 +23,8 @@
 #include "dem/engine.h"
 #include "dem/error.h"
 
-/* 2: wall records hold dem_wall_spec.length and .angle (finite indenters). */
+/* 2: wall records hold dem_wall_spec.length and .angle (finite indenters); the clock base
+ * (time = t_base + (steps - steps_base) dt, exact across split runs). */
 #define DEM_CHECKPOINT_VERSION 2
 
 /* Write the state of s and the caller's blob user[0 .. user_len) (may be NULL / 0) to path

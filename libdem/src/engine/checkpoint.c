@@ -1,8 +1,8 @@
 /* HDF5 checkpoints of the engine (dem/checkpoint.h).
  *
- * Layout (version 2; version 1 had no wall length and angle), all datasets in the root
- * group; counts that may be zero are stored
- * with at least one element (the true counts are in "meta_i"):
+ * Layout (version 2; version 1 had no wall length and angle and no clock base), all
+ * datasets in the root group; counts that may be zero are stored with at least one element
+ * (the true counts are in "meta_i"):
  *   format        uint8[16]   "dem-checkpoint" (zero padded)
  *   version       int32[1]    DEM_CHECKPOINT_VERSION
  *   meta_i        int64[NI]   integer state (enum MI below)
@@ -44,11 +44,11 @@ enum {
   MI_N, MI_NMAT, MI_NWALL, MI_NINTER, MI_NH, MI_HOFF, MI_NTHREADS, MI_SORT_EVERY,
   MI_BUILDS_SINCE_SORT, MI_NEED_BUILD, MI_NEED_FORCES, MI_STEPS, MI_REBUILDS, MI_SORTS,
   MI_NPAIRS, MI_LAST_GOOD, MI_USER_LEN, MI_CHECK_INTERVAL, MI_KE_STRIKES, MI_HAVE_LIST,
-  MI_CONTACTS, MI_WALL_CONTACTS, NI
+  MI_CONTACTS, MI_WALL_CONTACTS, MI_STEPS_BASE, NI
 };
 enum {
   MD_DT, MD_G0, MD_G1, MD_G2, MD_SKIN, MD_TIME, MD_MAX_OVERLAP_FRAC, MD_KE_GROWTH, MD_KE_FLOOR,
-  MD_STAT_MAX_OVERLAP, MD_KE, ND
+  MD_STAT_MAX_OVERLAP, MD_KE, MD_T_BASE, ND
 };
 enum {
   WD_KIND, WD_P = 1, WD_N = 4, WD_RADIUS = 7, WD_V = 8, WD_MATERIAL = 11, WD_F = 12, WD_T = 15,
@@ -192,6 +192,7 @@ int dem_sim_checkpoint_write(const dem_sim *s, const char *path, const void *use
   mi[MI_HAVE_LIST] = have_list;
   mi[MI_CONTACTS] = (int64_t)s->st.contacts;
   mi[MI_WALL_CONTACTS] = (int64_t)s->st.wall_contacts;
+  mi[MI_STEPS_BASE] = s->steps_base;
   double md[ND] = {0};
   md[MD_DT] = s->dt;
   md[MD_G0] = s->g[0];
@@ -204,6 +205,7 @@ int dem_sim_checkpoint_write(const dem_sim *s, const char *path, const void *use
   md[MD_KE_FLOOR] = s->bd.ke_floor;
   md[MD_STAT_MAX_OVERLAP] = s->st.max_overlap_frac;
   md[MD_KE] = s->st.kinetic_energy;
+  md[MD_T_BASE] = s->t_base;
 
   H5E_auto2_t old_fn;
   void *old_data;
@@ -385,8 +387,8 @@ static int restore(rctx *r, dem_sim **out, void **user, size_t *user_len) {
                                path, (int)version, DEM_CHECKPOINT_VERSION,
                                version < DEM_CHECKPOINT_VERSION
                                    ? " (written by an older build: version 2 added the "
-                                     "indenter length and angle to the walls; rerun to "
-                                     "write a new checkpoint)"
+                                     "indenter length and angle to the walls and the "
+                                     "clock base; rerun to write a new checkpoint)"
                                    : " (written by a newer build)");
   int64_t mi[NI];
   double md[ND];
@@ -411,6 +413,8 @@ static int restore(rctx *r, dem_sim **out, void **user, size_t *user_len) {
   if (mi[MI_USER_LEN] < 0 || mi[MI_USER_LEN] > ((int64_t)1 << 40))
     return bad(r, "user blob length", mi[MI_USER_LEN], "[0, 2^40]");
   if (mi[MI_HAVE_LIST] && mi[MI_NH] == 0) return bad(r, "have_list", 1, "0 when nh = 0");
+  if (mi[MI_STEPS_BASE] < 0 || mi[MI_STEPS_BASE] > mi[MI_STEPS])
+    return bad(r, "clock base step", mi[MI_STEPS_BASE], "[0, steps]");
   const size_t nn = (size_t)n;
   const int nmat = (int)mi[MI_NMAT], nwall = (int)mi[MI_NWALL], ni = (int)mi[MI_NINTER];
   const int nh = (int)mi[MI_NH], have_list = mi[MI_HAVE_LIST] != 0;
@@ -664,6 +668,8 @@ static int restore(rctx *r, dem_sim **out, void **user, size_t *user_len) {
     return r->rc = dem_err_set(err, DEM_EPARSE, "%s: %s", path, err->msg);
   s->st.steps = (long)mi[MI_STEPS];
   s->st.time = md[MD_TIME];
+  s->t_base = md[MD_T_BASE];
+  s->steps_base = (long)mi[MI_STEPS_BASE];
   s->st.rebuilds = (long)mi[MI_REBUILDS];
   s->st.sorts = (long)mi[MI_SORTS];
   s->st.contacts = (size_t)mi[MI_CONTACTS];

@@ -118,6 +118,11 @@ struct dem_sim {
   dem_tdata td[DEM_MAX_THREADS];
 
   dem_sim_stats st;
+  /* st.time = t_base + (st.steps - steps_base) dt: a function of the step count, so that a
+   * run split into several calls (an interruption, a restart) has bit-identical times;
+   * the base moves when dt changes (dem_sim_set_dt). */
+  double t_base;
+  long steps_base;
 };
 
 /* particles.c */

@@ -359,7 +359,7 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
   }
   if (stop == STOP_OVERLAP) collect(s, 1); /* that step's loads were not collected */
   s->st.steps += done;
-  s->st.time += (double)done * s->dt;
+  s->st.time = s->t_base + (double)(s->st.steps - s->steps_base) * s->dt;
   if (done > 0) s->f_unkicked = 0;
   s->st.loop_seconds += now_s() - t0;
   switch (stop) {

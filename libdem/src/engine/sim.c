@@ -115,6 +115,10 @@ void dem_sim_invalidate(dem_sim *s) {
 int dem_sim_set_dt(dem_sim *s, double dt, dem_err *err) {
   if (!(dt > 0.0 && isfinite(dt)))
     return dem_err_set(err, DEM_ERANGE, "dt = %g s (allowed: > 0, finite)", dt);
+  if (dt != s->dt) { /* the clock goes on from here with the new step */
+    s->t_base = s->st.time;
+    s->steps_base = s->st.steps;
+  }
   s->dt = dt;
   return DEM_OK;
 }

@@ -411,8 +411,9 @@ static int apply_override(dem_scene *sc, const dem_scene_config *ov, const char 
       return dem_err_set(err, DEM_EINVAL,
                          "%s: the override changes %s (stored %g, given %g): only the "
                          "indentation (shape, indenter_diameter, indenter_length, indent_rate, "
-                         "h_over_r, unload, pi), threads, sample_interval and the settle/hold "
-                         "limits may differ from the checkpoint's config",
+                         "h_over_r, unload, pi, dt_factor), threads, sample_interval, "
+                         "output_stress and the settle/hold limits may differ from the "
+                         "checkpoint's config",
                          path, what, va, vb);
     if (f->ov == OV_INDENT && indent_begun)
       return dem_err_set(err, DEM_EINVAL,
@@ -539,6 +540,14 @@ dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
       memcpy(msg, err->msg, sizeof msg);
       dem_err_set(err, err->code, "%s: override: %s", path, msg);
       goto fail;
+    }
+    /* inside the consolidation servo: its gain from the new k_max and dt (scene.c) */
+    if (sc->reached == DEM_SCENE_STAGE_SETTLED && sc->sub == 2) {
+      const double A = M_PI * sc->die_radius * sc->die_radius, dm = sc->cfg.d_mean;
+      sc->gain = 1.0 / (A / (dm * dm) * sc->k_max * sc->cfg.servo_steps * sc->dt);
+      if (dem_sim_set_wall_servo(sc->sim, sc->w_piston, sc->f_set, sc->gain, sc->v_piston,
+                                 err))
+        goto fail;
     }
   }
   if (dem_sim_set_threads(sc->sim, sc->cfg.threads, err)) goto fail;
