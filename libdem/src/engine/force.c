@@ -461,12 +461,23 @@ static inline __attribute__((always_inline)) void hm_compute_body(hm_batch *rest
   }
 }
 
+/* Portable builds carry the kernel also for AVX2 and AVX-512 and pick one when the program
+ * loads (gcc function multiversioning, x86-64 only); the results are the same bits in every
+ * version (IEEE add, multiply, divide and square root; no contraction into FMA under
+ * -std=c11). A -march build (DEM_NATIVE) compiles the one version it targets. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__AVX2__) && \
+    defined(__gnu_linux__)
+#define DEM_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define DEM_CLONES
+#endif
+
 /* uni: every contact has the constants cu (one particle material), not gathered per contact */
-__attribute__((noinline)) static void hm_compute_u(hm_batch *restrict b, int nb, double dt,
+DEM_CLONES __attribute__((noinline)) static void hm_compute_u(hm_batch *restrict b, int nb, double dt,
                                                    const double *cu) {
   hm_compute_body(b, nb, dt, cu, 1);
 }
-__attribute__((noinline)) static void hm_compute_v(hm_batch *restrict b, int nb, double dt) {
+DEM_CLONES __attribute__((noinline)) static void hm_compute_v(hm_batch *restrict b, int nb, double dt) {
   hm_compute_body(b, nb, dt, NULL, 0);
 }
 
