@@ -252,6 +252,25 @@ START_TEST(test_rejects_bad_files) {
   ck_assert_int_eq(err.code, DEM_EPARSE);
   ck_assert_ptr_nonnull(strstr(err.msg, "format tag"));
 
+  /* a file of the previous format version (1: walls without length and angle): the int32
+   * version follows the 16-byte format tag in the file's raw data */
+  at = memmem(b, n, "dem-checkpoint", 14);
+  ck_assert_ptr_nonnull(at);
+  int32_t v;
+  memcpy(&v, at + 16, 4);
+  ck_assert_int_eq(v, DEM_CHECKPOINT_VERSION);
+  v = 1;
+  memcpy(at + 16, &v, 4);
+  spit(bad, b, n);
+  v = DEM_CHECKPOINT_VERSION;
+  memcpy(at + 16, &v, 4);
+  ck_assert_ptr_null(dem_sim_checkpoint_read(bad, NULL, NULL, &err));
+  ck_assert_int_eq(err.code, DEM_EUNSUPPORTED);
+  ck_assert_ptr_nonnull(strstr(err.msg, "version 1"));
+  ck_assert_ptr_nonnull(strstr(err.msg, "older build"));
+  ck_assert_ptr_nonnull(strstr(err.msg, bad));
+  fprintf(stderr, "old version: %s\n", err.msg);
+
   /* garbage */
   memset(b, 0x5a, n < 4096 ? n : 4096);
   spit(bad, b, n);
@@ -314,6 +333,8 @@ START_TEST(test_restart_indenters) {
         ws.p[2] = (w == 3) ? 1.2e-3 + ws.radius : 1.2e-3; /* sphere: p is the centre */
         ws.n[2] = -1.0;
         ws.v[2] = -0.01;
+        if (w >= 4) ws.length = 2.0 * ws.radius; /* closed cylinder, a real cube */
+        if (w == 5) ws.angle = 0.3;               /* turned about its axis */
       }
       ck_assert_int_eq(dem_sim_add_wall(s[k], &ws, NULL, &err), DEM_OK);
     }
@@ -346,6 +367,8 @@ START_TEST(test_restart_indenters) {
     dem_sim_wall(b, w, &wb);
     ck_assert_int_eq(wb.kind, wa.kind);
     ck_assert_double_eq(wb.radius, wa.radius);
+    ck_assert_double_eq(wb.length, wa.length);
+    ck_assert_double_eq(wb.angle, wa.angle);
   }
   ck_assert_int_eq(dem_sim_run(b, M, &err), DEM_OK);
   assert_same(s[0], b);

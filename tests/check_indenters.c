@@ -6,6 +6,7 @@
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "dem/engine.h"
 
@@ -74,6 +75,88 @@ START_TEST(test_box) {
   expect(&w, -a + 0.2e-3, 0, 8e-3, r, r + 0.2e-3, -1, 0, 0, 1.0);
   /* high up a side face: still that face (semi-infinite prism) */
   expect(&w, 1e-3, -(a + r - 3e-4), 0.2, r, 3e-4, 0, -1, 0, 1.0);
+}
+END_TEST
+
+/* Closed flat cylinder (length 16 mm behind the face, as dem_scene makes it: length = the
+ * diameter): the back face, back rim, side near the back, inside near the back, and a
+ * point high above that the semi-infinite body would still touch through its side. */
+START_TEST(test_flatcyl_closed) {
+  dem_wall_spec w = {DEM_WALL_FLATCYL, {0, 0, 0}, {0, 0, -1}, 8e-3, {0, 0, 0}, 0};
+  const double r = 5e-4, Rc = 8e-3, L = 16e-3, rs = sqrt(Rc / (Rc + r));
+  w.length = L; /* body: 0 <= z <= 16 mm, back face at z = L with outward normal +z */
+  /* back face: 0.25 mm overlap */
+  expect(&w, 2e-3, -1e-3, L + r - 2.5e-4, r, 2.5e-4, 0, 0, 1, 1.0);
+  /* back rim: at 45 degrees in the (radial (0.6, 0.8), +z) plane, distance 0.35 mm */
+  double s = 0.35e-3 / sqrt(2.0), h = 1 / sqrt(2.0);
+  expect(&w, 0.6 * (Rc + s), 0.8 * (Rc + s), L + s, r, r - 0.35e-3, 0.6 * h, 0.8 * h, h, 1.0);
+  /* the side just below the back rim (1 mm): still the side */
+  expect(&w, 0, -(Rc + r - 1e-4), L - 1e-3, r, 1e-4, 0, -1, 0, rs);
+  /* centre inside, 0.3 mm below the back face: pushed out through the back */
+  expect(&w, 1e-3, 0, L - 0.3e-3, r, r + 0.3e-3, 0, 0, 1, 1.0);
+  /* centre inside, 0.3 mm above the front face: through the front as before */
+  expect(&w, 1e-3, 0, 0.3e-3, r, r + 0.3e-3, 0, 0, -1, 1.0);
+  /* high above: the semi-infinite body's side contact is gone; the back rim is the nearest
+   * point (distance sqrt(0.3^2 + 484^2) mm), far out of contact */
+  double dx = r - 2e-4, dz = 0.5 - L, dd = sqrt(dx * dx + dz * dz);
+  expect(&w, -(Rc + r - 2e-4), 0, 0.5, r, r - dd, -dx / dd, 0, dz / dd, 1.0);
+  /* above the back face on the axis, 5 mm away */
+  expect(&w, 0, 0, L + 5e-3, r, r - 5e-3, 0, 0, 1, 1.0);
+  /* the same point without a length (semi-infinite): inside, nearest the side */
+  w.length = 0.0;
+  expect(&w, 0, -(Rc - 1e-3), L - 0.3e-3, r, r + 1e-3, 0, -1, 0, rs);
+}
+END_TEST
+
+/* A real cube (side 16 mm = 2 radius, length 16 mm): back face, back edges, back corner,
+ * inside near the back; then turned by 30 degrees about its axis: side face, front corner
+ * and a point that the unturned cube would contain. */
+START_TEST(test_box_closed) {
+  dem_wall_spec w = {DEM_WALL_BOX, {0, 0, 0}, {0, 0, -1}, 8e-3, {0, 0, 0}, 0};
+  const double r = 5e-4, a = 8e-3, L = 16e-3;
+  w.length = L; /* body: |x|, |y| <= 8 mm, 0 <= z <= 16 mm */
+  expect(&w, 2e-3, 3e-3, L + r - 1e-4, r, 1e-4, 0, 0, 1, 1.0);      /* back face */
+  double s = 0.3e-3 / sqrt(2.0), h = 1 / sqrt(2.0);
+  expect(&w, -a - s, 1e-3, L + s, r, r - 0.3e-3, -h, 0, h, 1.0);     /* back edge at x = -a */
+  expect(&w, 2e-3, a + s, L + s, r, r - 0.3e-3, 0, h, h, 1.0);       /* back edge at y = +a */
+  double c = 0.45e-3 / sqrt(3.0), q = 1 / sqrt(3.0);
+  expect(&w, a + c, a + c, L + c, r, r - 0.45e-3, q, q, q, 1.0);     /* back corner (+a,+a,L) */
+  expect(&w, -a - c, a + c, L + c, r, r - 0.45e-3, -q, q, q, 1.0);   /* back corner (-a,+a,L) */
+  expect(&w, 0, 1e-3, L - 0.2e-3, r, r + 0.2e-3, 0, 0, 1, 1.0);      /* inside, near the back */
+  expect(&w, 0, 1e-3, 0.2e-3, r, r + 0.2e-3, 0, 0, -1, 1.0);         /* inside, near the front */
+  /* turned by 30 degrees: e1' = cos e1 + sin e2 with e1 = x, e2 = n x e1 = -y */
+  w.angle = M_PI / 6.0;
+  const double cs = cos(w.angle), sn = sin(w.angle);
+  const double e1[3] = {cs, -sn, 0}, e2[3] = {-sn, -cs, 0};
+  double x[3];
+  /* side face +e1': 0.2 mm overlap at l2 = 1 mm, halfway up */
+  for (int k = 0; k < 3; k++) x[k] = (a + r - 2e-4) * e1[k] + 1e-3 * e2[k];
+  expect(&w, x[0], x[1], 5e-3, r, 2e-4, e1[0], e1[1], e1[2], 1.0);
+  /* front corner (+a e1' + a e2', z = 0): along (e1' + e2' - z)/sqrt3 */
+  for (int k = 0; k < 3; k++) x[k] = (a + c) * (e1[k] + e2[k]);
+  expect(&w, x[0], x[1], -c, r, r - 0.45e-3, q * (e1[0] + e2[0]), q * (e1[1] + e2[1]), -q, 1.0);
+  /* (0.99 a, 0.99 a): inside the unturned cube, outside the turned one beyond -e2'
+   * (l2 = 0.99 a (-sin - cos) = -1.352 a): no contact */
+  double l2 = 0.99 * a * (-sn - cs), dist = -l2 - a;
+  expect(&w, 0.99 * a, 0.99 * a, 5e-3, r, r - dist, -e2[0], -e2[1], -e2[2], 1.0);
+  /* a negative or non-finite length and a non-finite angle are rejected */
+  dem_err err;
+  dem_sim *sim = dem_sim_create(&err);
+  int m;
+  dem_sim_add_material(sim, 1000.0, &m, &err);
+  w.material = m;
+  w.length = -1e-3;
+  ck_assert_int_eq(dem_sim_add_wall(sim, &w, NULL, &err), DEM_ERANGE);
+  ck_assert_msg(strstr(err.msg, "length") != NULL, "%s", err.msg);
+  w.length = INFINITY;
+  ck_assert_int_eq(dem_sim_add_wall(sim, &w, NULL, &err), DEM_ERANGE);
+  w.length = L;
+  w.angle = NAN;
+  ck_assert_int_eq(dem_sim_add_wall(sim, &w, NULL, &err), DEM_ERANGE);
+  ck_assert_msg(strstr(err.msg, "angle") != NULL, "%s", err.msg);
+  w.angle = 0.5;
+  ck_assert_int_eq(dem_sim_add_wall(sim, &w, NULL, &err), DEM_OK);
+  dem_sim_free(sim);
 }
 END_TEST
 
@@ -158,6 +241,8 @@ int main(void) {
   tcase_add_test(tc, test_sphere);
   tcase_add_test(tc, test_flatcyl);
   tcase_add_test(tc, test_box);
+  tcase_add_test(tc, test_flatcyl_closed);
+  tcase_add_test(tc, test_box_closed);
   tcase_add_loop_test(tc, test_moving_indenter, 0, 3);
   tcase_add_test(tc, test_move_wall);
   suite_add_tcase(su, tc);

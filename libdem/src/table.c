@@ -110,6 +110,12 @@ int dem_table_set_attr(dem_table *t, const char *key, const char *value, dem_err
 long dem_table_nrows(const dem_table *t) { return t ? t->nrow : 0; }
 int dem_table_ncols(const dem_table *t) { return t ? t->ncol : 0; }
 
+int dem_table_col(const dem_table *t, const char *name) {
+  for (int c = 0; t && name && c < t->ncol; c++)
+    if (strcmp(t->name[c], name) == 0) return c;
+  return -1;
+}
+
 double dem_table_get(const dem_table *t, long row, int col) {
   if (!t || row < 0 || row >= t->nrow || col < 0 || col >= t->ncol) return NAN;
   return t->v[row * t->ncol + col];

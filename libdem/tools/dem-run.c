@@ -1,15 +1,23 @@
 /* dem-run — the ball-indentation scene from one libconfig file (docs/scene.md).
  *
- *   dem-run CONFIG [--out DIR] [--threads N]
+ *   dem-run CONFIG [--out DIR] [--threads N] [--restart CHECKPOINT]
  *
  * Writes DIR/series.h5 and DIR/series.csv (time series), DIR/snap_*.h5 + DIR/snapshots.xmf
- * (particle snapshots every output.snapshot_interval s of simulated time), and a progress
- * line on stderr (\r on a terminal, one line per update otherwise). Exit 0 ok, 2 usage or
- * configuration error (file:line: field = value (allowed ...)), 1 run failure.
+ * (particle snapshots every output.snapshot_interval s of simulated time), a progress
+ * line on stderr (\r on a terminal, one line per update otherwise), and a scene checkpoint
+ * DIR/checkpoint_<stage>.h5 at the end of every stage (filled, settled, consolidated,
+ * unloaded, indented). --restart continues from a scene checkpoint; the config file's
+ * indentation fields, indenter coefficients, threads and sampling override the stored
+ * ones (dem_scene_restore). SIGINT/SIGTERM stop at the next step boundary and write
+ * DIR/checkpoint_interrupted.h5. Exit 0 ok, 2 usage or configuration error (file:line:
+ * field = value (allowed ...)) or an unusable --restart file, 1 run failure (a breakdown
+ * also writes DIR/checkpoint_broken.h5 and names the last good checkpoint), 130 / 143
+ * interrupted by SIGINT / SIGTERM (state saved).
  */
 #include <errno.h>
 #include <libconfig.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +25,7 @@
 #include <unistd.h>
 
 #include "cli_common.h"
+#include "dem/checkpoint.h"
 #include "dem/scene.h"
 
 static const char *prog = "dem-run";
@@ -148,7 +157,7 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
   static const char *const psds[] = {"table6.1", "table5.1", NULL};
   static const char *const shapes[] = {"sphere", "cylinder", "cube", NULL};
   int psd = (int)c->psd, shape = 0;
-  double seed = (double)c->seed, np = 0, unload = 0, thr = 1;
+  double seed = (double)c->seed, np = 0, unload = 0, thr = 1, ostress = c->output_stress;
   if ((rc = word(&cx, bed, "psd", psds, &psd)) ||
       (rc = num(&cx, bed, "d_mean", 1e-7, 1.0, "m", &c->d_mean)) ||
       (rc = num(&cx, bed, "die_diameter", 3, 1000, "d", &c->die_diameter)) ||
@@ -169,6 +178,7 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
       (rc = num(&cx, co, "hold_tol", 1e-4, 0.5, "-", &c->hold_tol)) ||
       (rc = word(&cx, in, "shape", shapes, &shape)) ||
       (rc = num(&cx, in, "diameter", 0.5, 1000, "d", &c->indenter_diameter)) ||
+      (rc = num(&cx, in, "length", 0, 1000, "d", &c->indenter_length)) ||
       (rc = num(&cx, in, "strain_rate", 0, 1e4, "1/s", &c->indent_rate)) ||
       (rc = num(&cx, in, "h_over_r", 0.01, 2, "-", &c->h_over_r)) ||
       (rc = num(&cx, in, "unload", 0, 1, "", &unload)) ||
@@ -178,6 +188,7 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
       (rc = num(&cx, nu, "threads", 1, 64, "", &thr)) ||
       (rc = num(&cx, ou, "sample_interval", 0, 10, "s", &c->sample_interval)) ||
       (rc = num(&cx, ou, "snapshot_interval", 0, 1e3, "s", snap_dt)) ||
+      (rc = num(&cx, ou, "stress", 0, 1, "(true/false)", &ostress)) ||
       (rc = coeffs(&cx, config_setting_get_member(root, "particle"), &c->pp)) ||
       (rc = coeffs(&cx, config_setting_get_member(root, "wall"), &c->pw)) ||
       (rc = coeffs(&cx, config_setting_get_member(root, "indenter"), &c->pi)))
@@ -188,18 +199,66 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
   c->n_particles = (long)np;
   c->unload = unload != 0;
   c->threads = (int)thr;
+  c->output_stress = ostress != 0;
 out:
   config_destroy(&cf);
   return rc;
 }
 
 static void usage(FILE *f) {
-  fprintf(f, "usage: %s CONFIG [--out DIR] [--threads N]\n"
-             "  Runs fill, settle, consolidate, unload, indent (docs/scene.md).\n", prog);
+  fprintf(f, "usage: %s CONFIG [--out DIR] [--threads N] [--restart CHECKPOINT]\n"
+             "  Runs fill, settle, consolidate, unload, indent (docs/scene.md), writing\n"
+             "  DIR/checkpoint_<stage>.h5 after each stage. --restart continues from a\n"
+             "  checkpoint (the config's indentation fields apply to a bed not yet indented).\n"
+             "  SIGINT/SIGTERM write DIR/checkpoint_interrupted.h5 (exit 130/143).\n", prog);
 }
 
+/* SIGINT/SIGTERM: the engine's interrupt flag (polled once per step); a second signal
+ * gets the default action (kills). */
+static volatile sig_atomic_t intr_flag = 0, intr_sig = 0;
+static void on_signal(int sig) {
+  intr_sig = sig;
+  intr_flag = 1;
+  signal(sig, SIG_DFL);
+}
+
+/* A restart into a directory with snapshots: keep the index entries up to the restored
+ * time t (snapshots.xmf, written by dem_scene_write_xdmf), so that numbering continues and
+ * the index covers the whole run. */
+static void snapshots_resume(out_state *o, double t) {
+  char path[1024], line[512];
+  snprintf(path, sizeof path, "%s/snapshots.xmf", o->dir);
+  FILE *f = fopen(path, "r");
+  if (!f) return;
+  double tk = NAN;
+  while (fgets(line, sizeof line, f)) {
+    const char *a = strstr(line, "<Time Value=\""), *b = strstr(line, "NumberOfElements=\"");
+    if (a) tk = strtod(a + 13, NULL);
+    if (b && !isnan(tk)) {
+      if (!(tk <= t)) break;
+      if (o->count == o->cap) {
+        int c = o->cap ? 2 * o->cap : 64;
+        double *tt = realloc(o->times, (size_t)c * sizeof *tt);
+        if (tt) o->times = tt;
+        size_t *nn = realloc(o->n, (size_t)c * sizeof *nn);
+        if (nn) o->n = nn;
+        if (!tt || !nn) break;
+        o->cap = c;
+      }
+      o->times[o->count] = tk;
+      o->n[o->count] = (size_t)strtoul(b + 18, NULL, 10);
+      o->count++;
+      tk = NAN;
+    }
+  }
+  fclose(f);
+}
+
+static const char *const ck_names[] = {"filled", "settled", "consolidated", "unloaded",
+                                       "indented"};
+
 int main(int argc, char **argv) {
-  const char *cfgfile = NULL, *dir = ".";
+  const char *cfgfile = NULL, *dir = ".", *restart = NULL;
   int threads = 0;
   dem_err err;
   for (int i = 1; i < argc; i++) {
@@ -211,6 +270,8 @@ int main(int argc, char **argv) {
       return CLI_EXIT_OK;
     } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
       dir = argv[++i];
+    } else if (!strcmp(argv[i], "--restart") && i + 1 < argc) {
+      restart = argv[++i];
     } else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
       double t;
       if (cli_parse_double("--threads", argv[++i], 1, 64, &t, &err)) {
@@ -242,34 +303,92 @@ int main(int argc, char **argv) {
   }
   out_state o = {dir, 0, 0, NULL, NULL, isatty(2)};
   dem_scene_hooks h = {progress, o.tty ? 0.5 : 10.0, snap, snap_dt, &o};
-  dem_scene *sc = dem_scene_create(&c, &h, &err);
+  dem_scene *sc = restart ? dem_scene_restore(restart, &c, &h, &err)
+                          : dem_scene_create(&c, &h, &err);
   if (!sc) {
     cli_error(prog, &err);
+    if (restart)
+      fprintf(stderr, "%s: --restart needs a checkpoint written by dem-run "
+                      "(DIR/checkpoint_<stage>.h5) and the config it was run with\n", prog);
     return CLI_EXIT_USAGE;
   }
-  int rc = dem_scene_run(sc, &err);
+  char last_ck[1024] = "", path[1024];
+  if (restart) {
+    dem_sim_stats st;
+    dem_sim_get_stats(dem_scene_sim(sc), &st);
+    snapshots_resume(&o, st.time);
+    int k = (int)dem_scene_get_stage(sc);
+    fprintf(stderr, "%s: restarted from %s: stage %s completed, t = %.6g s\n", prog, restart,
+            k >= 0 ? ck_names[k] : "(none)", st.time);
+    snprintf(last_ck, sizeof last_ck, "%s", restart);
+  }
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+  dem_sim_set_interrupt_flag(dem_scene_sim(sc), &intr_flag);
+  int (*const stage_fn[])(dem_scene *, dem_err *) = {dem_scene_fill, dem_scene_settle,
+                                                     dem_scene_consolidate, dem_scene_unload,
+                                                     dem_scene_indent};
+  int rc = DEM_OK;
+  for (int k = 0; k < 5 && !rc; k++) {
+    if ((int)dem_scene_get_stage(sc) >= k) continue;
+    if ((rc = stage_fn[k](sc, &err))) break;
+    snprintf(path, sizeof path, "%s/checkpoint_%s.h5", dir, ck_names[k]);
+    if ((rc = dem_scene_save(sc, path, &err))) break;
+    snprintf(last_ck, sizeof last_ck, "%s", path);
+  }
   if (o.tty) fputc('\n', stderr);
-  char path[1024];
+  int status = rc ? CLI_EXIT_RUN : CLI_EXIT_OK;
   dem_err e2;
+  if (rc == DEM_EINTERRUPTED) {
+    /* a clean step boundary: save and say how to go on */
+    int sig = intr_sig ? (int)intr_sig : SIGINT;
+    status = 128 + sig;
+    snprintf(path, sizeof path, "%s/checkpoint_interrupted.h5", dir);
+    if (dem_scene_save(sc, path, &e2)) {
+      cli_error(prog, &e2);
+      status = CLI_EXIT_RUN;
+    } else {
+      fprintf(stderr, "%s: interrupted by %s; state saved to %s\n%s: resume with: %s %s --out "
+                      "%s --restart %s\n",
+              prog, sig == SIGTERM ? "SIGTERM" : "SIGINT", path, prog, prog, cfgfile, dir,
+              path);
+    }
+  } else if (rc == DEM_ENONFINITE || rc == DEM_EUNSTABLE || rc == DEM_ERUNAWAY) {
+    /* the state in memory is broken: keep it for diagnosis, point to the last good one */
+    cli_error(prog, &err);
+    snprintf(path, sizeof path, "%s/checkpoint_broken.h5", dir);
+    if (dem_scene_save(sc, path, &e2) == DEM_OK)
+      fprintf(stderr, "%s: the broken state is in %s (for diagnosis only)\n", prog, path);
+    if (*last_ck)
+      fprintf(stderr, "%s: the last good checkpoint is %s: restart with %s %s --out %s "
+                      "--restart %s\n",
+              prog, last_ck, prog, cfgfile, dir, last_ck);
+    else
+      fprintf(stderr, "%s: no stage was completed: no checkpoint to restart from\n", prog);
+  } else if (rc) {
+    cli_error(prog, &err);
+    if (*last_ck) fprintf(stderr, "%s: the last checkpoint is %s\n", prog, last_ck);
+  }
   snprintf(path, sizeof path, "%s/series.h5", dir);
   int wr = dem_table_write(dem_scene_series(sc), path, &e2);
   snprintf(path, sizeof path, "%s/series.csv", dir);
   if (!wr) wr = dem_table_write(dem_scene_series(sc), path, &e2);
   dem_scene_info in;
   dem_scene_get_info(sc, &in);
-  printf("particles %zu, dt %.3g s, bed after unloading %.4g m (phi %.3f), surface %.4g m, "
-         "depth %.4g m, indenter force %.4g N\n",
-         in.n, in.dt, in.bed_top, in.phi, in.surface, in.depth, in.indenter_force);
+  if (!rc)
+    printf("particles %zu, dt %.3g s, bed after unloading %.4g m (phi %.3f), surface %.4g m, "
+           "depth %.4g m, indenter force %.4g N\n",
+           in.n, in.dt, in.bed_top, in.phi, in.surface, in.depth, in.indenter_force);
   dem_scene_free(sc);
   free(o.times);
   free(o.n);
-  if (rc) {
-    cli_error(prog, &err);
-    return CLI_EXIT_RUN;
-  }
   if (wr) {
     cli_error(prog, &e2);
-    return CLI_EXIT_RUN;
+    if (!status) status = CLI_EXIT_RUN;
   }
-  return CLI_EXIT_OK;
+  return status;
 }

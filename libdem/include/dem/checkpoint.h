@@ -23,7 +23,8 @@
 #include "dem/engine.h"
 #include "dem/error.h"
 
-#define DEM_CHECKPOINT_VERSION 1
+/* 2: wall records hold dem_wall_spec.length and .angle (finite indenters). */
+#define DEM_CHECKPOINT_VERSION 2
 
 /* Write the state of s and the caller's blob user[0 .. user_len) (may be NULL / 0) to path
  * (via path.tmpPID and rename). s is not modified. */

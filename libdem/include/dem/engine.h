@@ -55,15 +55,16 @@ typedef struct dem_particles {
  *   SPHERE    centre p, radius `radius`.
  *   FLATCYL   a flat-ended cylinder: flat end face centred at p with outward normal n
  *             (towards the particles, e.g. (0,0,-1) for an indenter moving down), radius
- *             `radius`, extending without end behind the face (a punch on its rod).
- *   BOX       a square prism (the cube of 6.2.2): leading face centred at p with outward
- *             normal n, square cross-section of half-side `radius`, extending without end
- *             behind the face; edges along the coordinate axis least aligned with n
- *             (x and y for a vertical indenter) projected onto the face.
- * Contact: the closest point of the body's surface (face, rim/edge, side, corner). The
- * bodies are semi-infinite so that dem_wall_spec keeps its fields: a cube of side 2 radius
- * pressed to a depth below 2 radius differs from the prism only if particles climb more than
- * 2 radius above its leading face. */
+ *             `radius`, closed by a flat back face at distance `length` behind the front
+ *             face (`length` 0: extending without end behind the face, a punch on its rod).
+ *   BOX       a square prism: leading face centred at p with outward normal n, square
+ *             cross-section of half-side `radius`, closed by a back face at distance
+ *             `length` (2 radius: the cube of 6.2.2; 0: without end). Edges along e1 and
+ *             e2 = n x e1, e1 the coordinate axis least aligned with n projected onto the
+ *             face (x and -y for a vertical indenter; ties go to x, then y), turned by
+ *             `angle` about n (e1' = cos(angle) e1 + sin(angle) e2).
+ * Contact: the closest point of the body's surface (face, rim/edge, side, corner, back face
+ * and back edges). */
 typedef enum {
   DEM_WALL_PLANE = 0,
   DEM_WALL_CYLINDER,
@@ -80,6 +81,9 @@ typedef struct dem_wall_spec {
   double radius;  /* m, cylinder or disc radius (unused for a plane) */
   double v[3];    /* m/s, translation velocity of the wall (0 for a fixed wall) */
   int material;   /* index of the wall's material (selects the interaction) */
+  double length;  /* m, FLATCYL and BOX: body length behind the leading face (0: without
+                     end; the field may be left out of an initializer) */
+  double angle;   /* rad, BOX: turn of the edges about n (0: the default frame) */
 } dem_wall_spec;
 
 /* Breakdown detection (dem_sim_run stops with an error status). */
@@ -196,5 +200,48 @@ double *dem_sim_pair_history(dem_sim *s, size_t i, size_t j);
 int dem_sim_history_size(const dem_sim *s);
 /* The history block of particle i against wall w. */
 double *dem_sim_wall_history(dem_sim *s, size_t i, int wall);
+
+/* ---- contact export (libdem/src/engine/contacts.c; docs/engine.md "Contact export") ----
+ * Every particle-particle and particle-wall contact of the last force evaluation, with the
+ * force it applied, for stresses (dem/analysis.h, thesis 5.1) and tests. A separate pass
+ * over the neighbour and wall lists re-evaluates each contact from the stored state: the
+ * positions (unchanged since the evaluation), the half-step velocities the evaluation saw
+ * (recovered as v - dt/2 F/m after a step), the wall velocities it used (a servo changes
+ * them afterwards) and the histories as the evaluation left them, WITHOUT modifying
+ * anything (normal laws run on a copy of the history block; the tangential force is rebuilt
+ * from the stored spring: -k xi when sliding, -k xi - c v_t capped at the Coulomb limit when
+ * sticking). The sum of a particle's contact forces plus m g equals dem_particles.f to
+ * round-off, and the wall contacts sum to -dem_sim_wall_load (tests/check_scene_stress.c).
+ * Assumes the normal law is idempotent at an unchanged overlap (true of every law in
+ * laws.def: a second call at the same alpha with the updated history gives the same force).
+ *
+ * Contact point (documented convention):
+ *   pair    on the line of centres in the middle of the overlap region,
+ *           x_i - (r_i - alpha/2) n = x_j + (r_j - alpha/2) n — the point the engine uses
+ *           for the torques of the tangential force (force.c), shared by both particles;
+ *   wall    on the wall surface, x_i - (r_i - alpha) n — the point of the engine's torques
+ *           on the particle and the wall (walls.c), rigid walls do not deform.
+ * With these points a particle in moment equilibrium (without rolling resistance) gives a
+ * symmetric stress tensor. */
+typedef struct dem_sim_contact {
+  size_t i;          /* particle index (current dem_particles order) */
+  size_t j;          /* the other particle (i < j), or SIZE_MAX for a wall contact */
+  int wall;          /* wall index, -1 for a particle pair */
+  double alpha;      /* m, overlap (> 0 compression; < 0 an adhesive contact in tension) */
+  double n[3];       /* unit normal from j (or the wall) towards i */
+  double point[3];   /* m, contact point (above) */
+  double fn;         /* N, normal force incl. damping (> 0 repulsive), f = fn n + f_t */
+  double f[3];       /* N, total force on i (normal + tangential); on j (or the wall): -f */
+} dem_sim_contact;
+
+/* Lists the contacts into *buf (grown with realloc as needed: *cap is its capacity in
+ * records; start with *buf = NULL, *cap = 0 and free(*buf) at the end); *n receives the
+ * count. Pairs come first (by i, then j), then walls (by wall, then particle). DEM_EINVAL
+ * if the forces are not evaluated for the current state (particles added, walls moved,
+ * gravity changed since the last run: dem_sim_run(s, 0, err) evaluates them), DEM_ENOMEM.
+ * Valid right after dem_sim_run; velocities changed by hand since then change the damping
+ * parts. Cost: about one single-threaded force evaluation. */
+int dem_sim_contacts(const dem_sim *s, dem_sim_contact **buf, size_t *cap, size_t *n,
+                     dem_err *err);
 
 #endif

@@ -62,6 +62,8 @@ typedef struct dem_scene_config {
   /* indentation */
   dem_indenter_shape shape;
   double indenter_diameter; /* d, sphere/cylinder diameter or cube side (16 d) */
+  double indenter_length; /* d, flat cylinder's length behind its face (0: its diameter);
+                             the cube is a cube (length = side) */
   double indent_rate;     /* 1/s, indenter speed / bed height (defaults to strain_rate) */
   double h_over_r;        /* -, stop at this dimensionless penetration h/r (0.5) */
   int unload;             /* 1: withdraw the indenter at the same speed after h_over_r */
@@ -72,6 +74,10 @@ typedef struct dem_scene_config {
   double skin;            /* d, neighbour skin (0.1) */
   int threads;
   double sample_interval; /* s, time-series row interval (0: 200 rows per stage) */
+  /* output */
+  int output_stress;      /* 1 (default): the stress columns bin_p, bin_q, bin_phi, base_p
+                             of the time series (one contact export per row, see
+                             dem_scene_series); 0: those columns are NaN */
 } dem_scene_config;
 
 /* Defaults of the given material set (thesis tables) and the small quick bed. */
@@ -118,7 +124,16 @@ int dem_scene_run(dem_scene *sc, dem_err *err);         /* all of the above */
 dem_sim *dem_scene_sim(dem_scene *sc);
 /* The time series: t [s], stage [0 settle, 1 consolidate, 2 unload, 3 indent, 4 withdraw],
  * piston_z [m], piston_stress [Pa], indenter_z [m], depth [m], h_over_r [-],
- * indenter_force [N], hardness [Pa], kinetic_energy [J], contacts [-], wall_contacts [-]. */
+ * indenter_force [N], hardness [Pa], kinetic_energy [J], contacts [-], wall_contacts [-],
+ * then the stresses of the bed (thesis 5.1-5.3; NaN if config.output_stress is 0):
+ *   bin_p [Pa]   hydrostatic stress (5.2, compression positive) in the dynamic bin of Fig
+ *                5.18: 5.2 x 5.2 x 4.2 mm scaled by d_mean / 1 mm, centred on the axis, top
+ *                face at the indenter tip (dem_dynamic_bin with gap 0), volume minus the
+ *                indenter's part (dem_box_free_volume); stages 3 and 4 only, NaN before;
+ *   bin_q [Pa]   deviatoric stress (5.3) in the same bin; stages 3 and 4;
+ *   bin_phi [-]  solids fraction of the same bin (Fig 6.4); stages 3 and 4;
+ *   base_p [Pa]  hydrostatic stress in a bin of the same size on the axis at the base
+ *                (bottom face at z = 0); every stage. */
 const dem_table *dem_scene_series(const dem_scene *sc);
 void dem_scene_get_info(const dem_scene *sc, dem_scene_info *info);
 /* The discrete size distribution: diameters (in d) and number fractions of a table. */
@@ -129,14 +144,31 @@ double dem_scene_indent_area(dem_indenter_shape shape, double D, double h);
 
 /* ---- checkpoints of a scene and reuse of a prepared bed (issue 5) ---------------------
  * A scene checkpoint is an engine checkpoint (dem/checkpoint.h) whose caller blob holds the
- * scene state: the config, the stage reached, the bed measurements, the surface and the time
- * series so far. dem_scene_save writes it (temporary file + rename); dem_scene_restore reads
- * it back into a new scene that continues bit-identically (same thread count) with the
- * stored config. `override` (may be NULL) replaces the config of the stages not yet run;
- * only the indentation fields (shape, indenter_diameter, indent_rate, h_over_r, unload), the
- * particle-indenter parameters `pi`, threads, sample_interval and the settle/consolidation
- * limits may differ from the stored config (anything else: DEM_EINVAL naming the field).
- * This is how one consolidated bed serves many indentations. */
+ * scene state: the config, the stage reached, the bed measurements, the surface, the state
+ * of a stage in progress and the time series so far (libdem/src/scene/restart.c).
+ * dem_scene_save writes it (temporary file + rename) at any step boundary: between stages,
+ * or after a stage returned DEM_EINTERRUPTED (the engine's interrupt flag, see
+ * dem_sim_set_interrupt_flag on dem_scene_sim): an interrupted stage keeps its progress in
+ * the scene and continues exactly where it stopped when called again, in the same process
+ * or after a restore. dem_scene_restore reads it back into a new scene that continues
+ * bit-identically (same thread count) with the stored config; the stage functions of the
+ * stages already completed return DEM_OK at once (dem_scene_run continues with the next
+ * one), a stage whose predecessor is not complete is DEM_EINVAL.
+ * `override` (may be NULL) replaces the config of the stages not yet run; only the
+ * indentation fields (shape, indenter_diameter, indenter_length, indent_rate, h_over_r,
+ * unload), dt_factor (the time-step study of thesis 7.3; dt is recomputed) and the
+ * particle-indenter parameters `pi` (all only while the indentation has not begun),
+ * threads, sample_interval, output_stress and the limits settle_ke, settle_min_time,
+ * settle_max_time,
+ * hold_time, hold_tol may differ from the stored config (anything else: DEM_EINVAL naming
+ * the field, the stored and the given value). New `pi` coefficients re-create the
+ * particle-indenter interaction (stiffness_scale applied) and re-derive k_max and dt from
+ * the three interactions (dt changes only if the indenter becomes the stiffest contact).
+ * This is how one consolidated bed serves many indentations.
+ * Errors of restore name the file: DEM_EIO / DEM_EPARSE / DEM_EUNSUPPORTED of the engine
+ * checkpoint (missing, truncated, corrupted, other version), DEM_EINVAL for an engine
+ * checkpoint without a scene state, DEM_EPARSE for a scene state cut short or missing a
+ * field, DEM_EUNSUPPORTED for another scene-state version. */
 typedef enum {
   DEM_SCENE_STAGE_NONE = -1, /* created, not filled */
   DEM_SCENE_STAGE_FILLED = 0,
@@ -157,6 +189,15 @@ dem_scene_stage dem_scene_get_stage(const dem_scene *sc);
  * contact points and forces of the last force evaluation. The arrays belong to the scene
  * and stay valid until the next stage runs or the scene is freed. */
 int dem_scene_contacts(dem_scene *sc, dem_contact_view *view, dem_err *err);
+/* The static bins of Figs 5.8 / 5.13: dem_grid_thesis (5 columns in x, 1 in y, nz rows of
+ * 5.2 x 5.2 x 4.2 mm, scaled by d_mean / 1 mm) centred on the die axis, bottom at the base
+ * z = 0; sigma[9 * index + 3 i + j] (Pa, compression positive, nz * 5 * 9 doubles) from
+ * dem_stress_grid over dem_scene_contacts, each bin's volume its cell volume (a bin the
+ * indenter has entered, or one reaching beyond the die wall, is not corrected: use
+ * dem_stress_box with dem_box_free_volume for those). *grid_out (may be NULL) receives the
+ * grid. nz >= 1 (DEM_ERANGE). Invalidates the arrays of an earlier dem_scene_contacts. */
+int dem_scene_stress_grid(dem_scene *sc, size_t nz, double *sigma, dem_grid *grid_out,
+                          dem_err *err);
 
 /* Snapshot DIR/snap_<index>.h5 (x, v, omega, radius, id; attributes time, stage) and the
  * XDMF index DIR/snapshots.xmf over snapshots 0..count-1 (times, particle counts); both

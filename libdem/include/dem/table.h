@@ -30,6 +30,9 @@ int dem_table_append(dem_table *t, const double *row, dem_err *err);
 int dem_table_set_attr(dem_table *t, const char *key, const char *value, dem_err *err);
 long dem_table_nrows(const dem_table *t);
 int dem_table_ncols(const dem_table *t);
+/* Index of the column named `name`, or -1 if there is none (consumers find columns by name,
+ * so that columns appended later do not break them). */
+int dem_table_col(const dem_table *t, const char *name);
 /* Value at (row, col); NAN outside the table. */
 double dem_table_get(const dem_table *t, long row, int col);
 

@@ -1,6 +1,7 @@
 /* HDF5 checkpoints of the engine (dem/checkpoint.h).
  *
- * Layout (version 1), all datasets in the root group; counts that may be zero are stored
+ * Layout (version 2; version 1 had no wall length and angle), all datasets in the root
+ * group; counts that may be zero are stored
  * with at least one element (the true counts are in "meta_i"):
  *   format        uint8[16]   "dem-checkpoint" (zero padded)
  *   version       int32[1]    DEM_CHECKPOINT_VERSION
@@ -51,7 +52,8 @@ enum {
 };
 enum {
   WD_KIND, WD_P = 1, WD_N = 4, WD_RADIUS = 7, WD_V = 8, WD_MATERIAL = 11, WD_F = 12, WD_T = 15,
-  WD_WORK = 18, WD_PBUILD = 19, WD_SERVO = 22, WD_FTARGET, WD_GAIN, WD_VMAX, WD
+  WD_WORK = 18, WD_PBUILD = 19, WD_SERVO = 22, WD_FTARGET, WD_GAIN, WD_VMAX, WD_LENGTH,
+  WD_ANGLE, WD
 };
 
 /* ---- checksum ---- */
@@ -253,6 +255,8 @@ int dem_sim_checkpoint_write(const dem_sim *s, const char *path, const void *use
       d[WD_PBUILD + c] = wl->p_build[c];
     }
     d[WD_RADIUS] = wl->spec.radius;
+    d[WD_LENGTH] = wl->spec.length;
+    d[WD_ANGLE] = wl->spec.angle;
     d[WD_MATERIAL] = (double)wl->spec.material;
     d[WD_WORK] = wl->work;
     d[WD_SERVO] = (double)wl->servo;
@@ -376,8 +380,14 @@ static int restore(rctx *r, dem_sim **out, void **user, size_t *user_len) {
   get(r, "version", H5T_NATIVE_INT32, 1, 0, &version);
   if (!r->rc && version != DEM_CHECKPOINT_VERSION)
     return r->rc = dem_err_set(err, DEM_EUNSUPPORTED,
-                               "%s: checkpoint format version %d; this build reads version %d",
-                               path, (int)version, DEM_CHECKPOINT_VERSION);
+                               "%s: checkpoint format version %d; this build reads version %d "
+                               "only%s",
+                               path, (int)version, DEM_CHECKPOINT_VERSION,
+                               version < DEM_CHECKPOINT_VERSION
+                                   ? " (written by an older build: version 2 added the "
+                                     "indenter length and angle to the walls; rerun to "
+                                     "write a new checkpoint)"
+                                   : " (written by a newer build)");
   int64_t mi[NI];
   double md[ND];
   get(r, "meta_i", H5T_NATIVE_INT64, NI, 0, mi);
@@ -504,6 +514,8 @@ static int restore(rctx *r, dem_sim **out, void **user, size_t *user_len) {
       ws.v[c] = d[WD_V + c];
     }
     ws.radius = d[WD_RADIUS];
+    ws.length = d[WD_LENGTH];
+    ws.angle = d[WD_ANGLE];
     ws.material = (int)d[WD_MATERIAL];
     if (dem_sim_add_wall(s, &ws, NULL, err))
       return r->rc = dem_err_set(err, DEM_EPARSE, "%s: %s", path, err->msg);

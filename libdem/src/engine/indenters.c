@@ -18,10 +18,13 @@
  *            plane, rfac 1: an edge has no radius of its own, the particle's radius governs,
  *            as for the disc rim in walls.c), side (rho > Rc, -L <= z <= 0; radial normal,
  *            a convex cylinder: principal radii r and r Rc/(r + Rc), Hertz equivalent
- *            R* = sqrt(r * r Rc/(r + Rc)), rfac = sqrt(Rc / (Rc + r))), back face likewise.
- *   BOX      local frame e1 (the coordinate axis least aligned with n, projected),
- *            e2 = n x e1, e3 = n, origin p; body |l1| <= a, |l2| <= a, l3 <= 0 with
- *            a = `radius`; closest point = the local coordinates clamped into the body:
+ *            R* = sqrt(r * r Rc/(r + Rc)), rfac = sqrt(Rc / (Rc + r))), back face
+ *            (rho <= Rc, z < -L; normal -n) and back rim (rho > Rc, z < -L) like the front
+ *            ones; L = `length` (0: L = infinity, no back face).
+ *   BOX      local frame e1 (the coordinate axis least aligned with n, projected, turned
+ *            by `angle` about n), e2 = n x e1, e3 = n, origin p; body |l1| <= a,
+ *            |l2| <= a, -L <= l3 <= 0 with a = `radius`, L = `length` (0: infinity);
+ *            closest point = the local coordinates clamped into the body:
  *            one clamped coordinate = a face (rfac 1), two = an edge, three = a corner
  *            (rfac 1 for both).
  */
@@ -67,7 +70,7 @@ static double sphere_gap(const dem_wall_spec *w, const double x[3], double r, do
 static double flatcyl_gap(const dem_wall_spec *w, const double x[3], double r, double n[3],
                           double *rfac) {
   const double *a = w->n;
-  const double Rc = w->radius, L = INFINITY; /* semi-infinite: see engine.h */
+  const double Rc = w->radius, L = w->length > 0.0 ? w->length : INFINITY; /* engine.h */
   const double d[3] = {x[0] - w->p[0], x[1] - w->p[1], x[2] - w->p[2]};
   const double z = dot3(d, a);
   double e[3] = {d[0] - z * a[0], d[1] - z * a[1], d[2] - z * a[2]};
@@ -97,7 +100,7 @@ static double flatcyl_gap(const dem_wall_spec *w, const double x[3], double r, d
   const double dz = z - zq, dr = rho - rq;
   const double dist = sqrt(dz * dz + dr * dr);
   for (int k = 0; k < 3; k++) n[k] = (dz * a[k] + dr * e[k]) / dist;
-  if (dz == 0.0) *rfac = sqrt(Rc / (Rc + r)); /* the side */
+  if (dz == 0.0) *rfac = sqrt(Rc / (Rc + r)); /* the side; back face and back rim: 1 */
   return r - dist;
 }
 
@@ -109,15 +112,23 @@ static double box_gap(const dem_wall_spec *w, const double x[3], double r, doubl
   e[1][0] = e[2][1] * e[0][2] - e[2][2] * e[0][1];
   e[1][1] = e[2][2] * e[0][0] - e[2][0] * e[0][2];
   e[1][2] = e[2][0] * e[0][1] - e[2][1] * e[0][0];
-  /* local coordinates from the face centre: |l1|, |l2| <= a across, l3 <= 0 behind */
-  const double a = w->radius;
+  if (w->angle != 0.0) { /* turn the edges about n: e1' = c e1 + s e2, e2' = c e2 - s e1 */
+    const double c = cos(w->angle), s = sin(w->angle);
+    for (int k = 0; k < 3; k++) {
+      const double u = e[0][k], v = e[1][k];
+      e[0][k] = c * u + s * v;
+      e[1][k] = c * v - s * u;
+    }
+  }
+  /* local coordinates from the face centre: |l1|, |l2| <= a across, -L <= l3 <= 0 */
+  const double a = w->radius, L = w->length > 0.0 ? w->length : INFINITY;
   const double d[3] = {x[0] - w->p[0], x[1] - w->p[1], x[2] - w->p[2]};
-  const double h[3] = {a, a, INFINITY};
+  const double h[2] = {a, a};
   double l[3], dl[3];
   int outside = 0;
   for (int k = 0; k < 3; k++) {
     l[k] = dot3(d, e[k]);
-    double lo = k < 2 ? -a : -INFINITY, hi = k < 2 ? a : 0.0;
+    double lo = k < 2 ? -a : -L, hi = k < 2 ? a : 0.0;
     double q = l[k] > hi ? hi : (l[k] < lo ? lo : l[k]);
     dl[k] = l[k] - q;
     outside |= dl[k] != 0.0;
@@ -127,10 +138,11 @@ static double box_gap(const dem_wall_spec *w, const double x[3], double r, doubl
     int m = 0;
     double best = INFINITY;
     for (int k = 0; k < 3; k++) {
-      double dep = k < 2 ? h[k] - fabs(l[k]) : -l[k];
+      double dep = k < 2 ? h[k] - fabs(l[k]) : fmin(-l[k], l[k] + L);
       if (dep < best) best = dep, m = k;
     }
-    const double sg = m == 2 || l[m] >= 0.0 ? 1.0 : -1.0;
+    /* side faces by the sign of l; along n: the front face unless the back is nearer */
+    const double sg = m == 2 ? (-l[2] <= l[2] + L ? 1.0 : -1.0) : (l[m] >= 0.0 ? 1.0 : -1.0);
     for (int k = 0; k < 3; k++) n[k] = sg * e[m][k];
     return r + best;
   }

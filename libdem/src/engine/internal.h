@@ -42,6 +42,10 @@ typedef struct dem_wall {
   double p_build[3];        /* m, the wall point at the last build */
   int servo;                /* 1: velocity from the servo law below */
   double f_target, gain, v_max; /* N, m/(s N), m/s */
+  double v_eval[3];         /* m/s, the velocity the last force evaluation used (a servo
+                               changes spec.v right after it); valid if have_v_eval */
+  int have_v_eval;          /* 0 until the first evaluation (or after a checkpoint restore:
+                               contacts.c then uses spec.v) */
 } dem_wall;
 
 /* Half Verlet list in CSR form: the neighbours j > i of particle i are
@@ -102,6 +106,9 @@ struct dem_sim {
   int sort_every, builds_since_sort;
   int need_build;
   int need_forces;                /* forces not yet evaluated for the current state */
+  int f_unkicked;                /* 1: the last force evaluation was not followed by a half
+                                    kick (dem_sim_run with 0 steps); 0: v = v_half + dt/2 F/m
+                                    (contacts.c recovers the half-step velocities) */
   dem_breakdown bd;
   volatile sig_atomic_t *intr;   /* polled once per step (dem/checkpoint.h), or NULL */
   long last_good;                /* step of the last breakdown check passed, -1 none */
@@ -153,6 +160,8 @@ void dem_engine_inter_compile(dem_inter *in);
 void dem_engine_pair_forces(dem_sim *s, dem_tdata *td);
 void dem_engine_partition(dem_sim *s);
 int dem_engine_spill_reserve(dem_sim *s, dem_err *err);
+
+/* contacts.c: dem_sim_contacts (dem/engine.h) */
 
 /* interaction lookup */
 static inline const dem_inter *dem_engine_inter(const dem_sim *s, int a, int b) {

@@ -168,6 +168,8 @@ static void collect(dem_sim *s, int add_work) {
       pw += s->td[t].wpow[w];
     }
     if (add_work) wl->work += pw * s->dt;
+    memcpy(wl->v_eval, wl->spec.v, sizeof wl->v_eval); /* before the servo changes it */
+    wl->have_v_eval = 1;
   }
   s->st.contacts = c;
   s->st.wall_contacts = wc;
@@ -194,6 +196,7 @@ static void compute_forces(dem_sim *s) {
     reduce_spills(s, t);
   }
   collect(s, 0); /* no time elapses: no work */
+  s->f_unkicked = 1;
 }
 
 /* Kinetic and gravitational energy of rows [a, b). */
@@ -361,6 +364,7 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
   if (stop == STOP_OVERLAP) collect(s, 1); /* that step's loads were not collected */
   s->st.steps += done;
   s->st.time += (double)done * s->dt;
+  if (done > 0) s->f_unkicked = 0;
   s->st.loop_seconds += now_s() - t0;
   switch (stop) {
   case STOP_BUILD:

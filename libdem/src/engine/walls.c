@@ -49,6 +49,12 @@ int dem_sim_add_wall(dem_sim *s, const dem_wall_spec *w, int *index, dem_err *er
   if (w->kind != DEM_WALL_PLANE && !(w->radius > 0.0 && isfinite(w->radius)))
     return dem_err_set(err, DEM_ERANGE, "wall %d: radius = %g m (allowed: > 0)", s->nwall,
                        w->radius);
+  if (!(w->length >= 0.0 && isfinite(w->length)))
+    return dem_err_set(err, DEM_ERANGE, "wall %d: length = %g m (allowed: >= 0, finite; 0 "
+                       "without end)", s->nwall, w->length);
+  if (!isfinite(w->angle))
+    return dem_err_set(err, DEM_ERANGE, "wall %d: angle = %g rad (allowed: finite)", s->nwall,
+                       w->angle);
   if (s->nh > 0) {
     nw.hist = calloc(s->cap ? s->cap : 1, (size_t)s->nh * sizeof(double));
     if (!nw.hist) return dem_err_set(err, DEM_ENOMEM, "wall %d: out of memory", s->nwall);

@@ -95,6 +95,7 @@ void dem_scene_config_defaults(dem_scene_config *c, dem_scene_materials m) {
   c->skin = 0.1;
   c->threads = 1;
   c->sample_interval = 1e-4;
+  c->output_stress = 1;
 }
 
 #define RANGE(field, lo, hi, unit)                                                           \
@@ -121,6 +122,7 @@ int dem_scene_config_check(const dem_scene_config *c, dem_err *err) {
   RANGE(hold_tol, 1e-4, 0.5, "-");
   RANGE(shape, 0, 2, "(0 sphere, 1 cylinder, 2 cube)");
   RANGE(indenter_diameter, 0.5, 1000.0, "d");
+  RANGE(indenter_length, 0.0, 1000.0, "d (0: the diameter)");
   RANGE(indent_rate, 0.0, 1e4, "1/s (0: strain_rate)");
   RANGE(h_over_r, 0.01, 2.0, "-");
   RANGE(unload, 0, 1, "");
@@ -129,6 +131,7 @@ int dem_scene_config_check(const dem_scene_config *c, dem_err *err) {
   RANGE(skin, 0.0, 2.0, "d");
   RANGE(threads, 1, 64, "");
   RANGE(sample_interval, 0.0, 10.0, "s");
+  RANGE(output_stress, 0, 1, "");
   if (c->indenter_diameter >= c->die_diameter)
     return dem_err_set(err, DEM_ERANGE,
                        "scene: indenter_diameter = %g d must be below die_diameter = %g d",
@@ -185,10 +188,36 @@ fail:
 
 static const char *const series_names[] = {
     "t", "stage", "piston_z", "piston_stress", "indenter_z", "depth", "h_over_r",
-    "indenter_force", "hardness", "kinetic_energy", "contacts", "wall_contacts"};
-static const char *const series_units[] = {"s", "-", "m", "Pa", "m", "m", "-",
-                                           "N", "Pa", "J", "-", "-"};
-#define NSERIES 12
+    "indenter_force", "hardness", "kinetic_energy", "contacts", "wall_contacts",
+    "bin_p", "bin_q", "bin_phi", "base_p"};
+static const char *const series_units[] = {"s", "-", "m", "Pa", "m", "m", "-", "N",
+                                           "Pa", "J", "-", "-", "Pa", "Pa", "-", "Pa"};
+#define NSERIES 16 /* the last SCENE_NSTRESS from scene_stress_row (stress.c) */
+
+dem_table *scene_series_create(dem_err *err) {
+  return dem_table_create(NSERIES, series_names, series_units, err);
+}
+
+int scene_interactions(dem_scene *sc, dem_err *err) {
+  const dem_scene_config *c = &sc->cfg;
+  const double *dd, *fr;
+  int nb = dem_scene_psd_table(c->psd, &dd, &fr), rc;
+  double dmin = dd[0];
+  for (int k = 1; k < nb; k++) dmin = dd[k] < dmin ? dd[k] : dmin;
+  const double r_min = 0.5 * dmin * c->d_mean, m_min = dem_sphere_mass(r_min, c->rho);
+  double kmax = 0.0;
+  const int hj = c->materials == DEM_SCENE_HERTZ_JKR;
+  if ((rc = make_inter(sc, sc->mat_p, sc->mat_p, &c->pp, hj ? "jkr-modified" : "pasha-simplified",
+                       "particle-particle", &kmax, m_min, r_min, err)) ||
+      (rc = make_inter(sc, sc->mat_p, sc->mat_w, &c->pw, hj ? "hertz" : "linear",
+                       "particle-wall", &kmax, m_min, r_min, err)) ||
+      (rc = make_inter(sc, sc->mat_p, sc->mat_i, &c->pi, hj ? "hertz" : "linear",
+                       "particle-indenter", &kmax, m_min, r_min, err)))
+    return rc;
+  sc->dt = c->dt_factor * dem_dt_mass_spring(m_min, kmax);
+  sc->k_max = kmax;
+  return dem_sim_set_dt(sc->sim, sc->dt, err);
+}
 
 dem_scene *dem_scene_create(const dem_scene_config *c, const dem_scene_hooks *h, dem_err *err) {
   if (dem_scene_config_check(c, err)) return NULL;
@@ -201,34 +230,19 @@ dem_scene *dem_scene_create(const dem_scene_config *c, const dem_scene_hooks *h,
   if (h) sc->hooks = *h;
   sc->w_ind = -1;
   sc->surface = NAN;
+  sc->reached = DEM_SCENE_STAGE_NONE;
   sc->die_radius = 0.5 * c->die_diameter * c->d_mean;
-  sc->series = dem_table_create(NSERIES, series_names, series_units, err);
+  sc->series = scene_series_create(err);
   sc->sim = dem_sim_create(err);
   if (!sc->series || !sc->sim) goto fail;
   if (dem_sim_add_material(sc->sim, c->rho, &sc->mat_p, err) ||
       dem_sim_add_material(sc->sim, c->rho_wall > 0 ? c->rho_wall : 7800.0, &sc->mat_w, err) ||
       dem_sim_add_material(sc->sim, c->rho_wall > 0 ? c->rho_wall : 7800.0, &sc->mat_i, err))
     goto fail;
-  const double *dd, *fr;
-  int nb = dem_scene_psd_table(c->psd, &dd, &fr);
-  double dmin = dd[0];
-  for (int k = 1; k < nb; k++) dmin = dd[k] < dmin ? dd[k] : dmin;
-  const double r_min = 0.5 * dmin * c->d_mean, m_min = dem_sphere_mass(r_min, c->rho);
-  double kmax = 0.0;
-  const int hj = c->materials == DEM_SCENE_HERTZ_JKR;
-  if (make_inter(sc, sc->mat_p, sc->mat_p, &c->pp, hj ? "jkr-modified" : "pasha-simplified",
-                 "particle-particle", &kmax, m_min, r_min, err) ||
-      make_inter(sc, sc->mat_p, sc->mat_w, &c->pw, hj ? "hertz" : "linear", "particle-wall",
-                 &kmax, m_min, r_min, err) ||
-      make_inter(sc, sc->mat_p, sc->mat_i, &c->pi, hj ? "hertz" : "linear", "particle-indenter",
-                 &kmax, m_min, r_min, err))
-    goto fail;
-  sc->dt = c->dt_factor * dem_dt_mass_spring(m_min, kmax);
-  sc->k_max = kmax;
+  if (scene_interactions(sc, err)) goto fail;
   double g[3] = {0, 0, -G_ACC};
   dem_sim_set_gravity(sc->sim, g);
-  if (dem_sim_set_dt(sc->sim, sc->dt, err) ||
-      dem_sim_set_skin(sc->sim, c->skin * c->d_mean, err) ||
+  if (dem_sim_set_skin(sc->sim, c->skin * c->d_mean, err) ||
       dem_sim_set_threads(sc->sim, c->threads, err))
     goto fail;
   dem_breakdown bd;
@@ -243,6 +257,7 @@ fail:
 
 void dem_scene_free(dem_scene *sc) {
   if (!sc) return;
+  scene_stress_free(sc);
   dem_sim_free(sc->sim);
   dem_table_free(sc->series);
   free(sc);
@@ -343,6 +358,8 @@ static int record(dem_scene *sc, dem_err *err) {
                          dem_sim_kinetic_energy(sc->sim),
                          (double)st.contacts,
                          (double)st.wall_contacts};
+  int rc = scene_stress_row(sc, row + NSERIES - SCENE_NSTRESS, err);
+  if (rc) return rc;
   return dem_table_append(sc->series, row, err);
 }
 
@@ -376,8 +393,21 @@ static long sample_steps(const dem_scene *sc) {
 /* Advance n steps (n <= the sample interval); a row is recorded whenever a sample
  * interval has elapsed since the last row. */
 static int advance(dem_scene *sc, long n, double frac, dem_err *err) {
-  int rc = dem_sim_run(sc->sim, n, err);
-  if (rc) return rc;
+  if (sc->resume) n = sc->pending; /* the rest of the interrupted advance */
+  sc->resume = 0;
+  dem_sim_stats st;
+  dem_sim_get_stats(sc->sim, &st);
+  const long s0 = st.steps;
+  int rc = n > 0 ? dem_sim_run(sc->sim, n, err) : DEM_OK;
+  if (rc) {
+    dem_sim_get_stats(sc->sim, &st);
+    sc->since_row += st.steps - s0;
+    if (rc == DEM_EINTERRUPTED) { /* a clean step boundary: resumable, also from a file */
+      sc->resume = 1;
+      sc->pending = n - (st.steps - s0);
+    }
+    return rc;
+  }
   sc->since_row += n;
   if (sc->since_row >= sample_steps(sc)) {
     sc->since_row = 0;
@@ -398,8 +428,41 @@ static void stage_begin(dem_scene *sc, int stage) {
   sc->last_progress = 0.0;
 }
 
+static double sim_time(dem_scene *sc) {
+  dem_sim_stats st;
+  dem_sim_get_stats(sc->sim, &st);
+  return st.time;
+}
+
+/* Stage order: 1 if the stage is already done (skip it: a restored scene continues), 0 to
+ * run it, an error if the stage before has not been completed. */
+static const char *const reached_names[] = {"fill", "settle", "consolidate", "unload",
+                                            "indent"};
+static int stage_guard(dem_scene *sc, dem_scene_stage st, dem_err *err) {
+  if (sc->reached >= (int)st) return 1;
+  if (sc->reached < (int)st - 1) {
+    int next = sc->reached + 1 < 0 ? 0 : sc->reached + 1;
+    return -dem_err_set(err, DEM_EINVAL, "scene %s: run the %s stage first",
+                        reached_names[st], reached_names[next > 4 ? 4 : next]);
+  }
+  return 0;
+}
+#define GUARD(st)                                                                            \
+  do {                                                                                       \
+    int g_ = stage_guard(sc, st, err);                                                       \
+    if (g_) return g_ > 0 ? DEM_OK : -g_;                                                    \
+  } while (0)
+
+static void stage_done(dem_scene *sc, dem_scene_stage st) {
+  sc->reached = (int)st;
+  sc->sub = 0;
+}
+
 int dem_scene_fill(dem_scene *sc, dem_err *err) {
   int rc;
+  GUARD(DEM_SCENE_STAGE_FILLED);
+  if (dem_sim_particles(sc->sim)->n > 0)
+    return dem_err_set(err, DEM_EINVAL, "scene fill: a failed fill left particles behind");
   if ((rc = scene_fill(sc, err))) return rc;
   dem_particles *p = dem_sim_particles(sc->sim);
   double m = 0;
@@ -414,122 +477,130 @@ int dem_scene_fill(dem_scene *sc, dem_err *err) {
       (rc = dem_sim_add_wall(sc->sim, &die, &sc->w_die, err)) ||
       (rc = dem_sim_add_wall(sc->sim, &pis, &sc->w_piston, err)))
     return rc;
+  stage_done(sc, DEM_SCENE_STAGE_FILLED);
   return DEM_OK;
 }
 
 int dem_scene_settle(dem_scene *sc, dem_err *err) {
   const dem_scene_config *c = &sc->cfg;
+  GUARD(DEM_SCENE_STAGE_SETTLED);
   stage_begin(sc, 0);
+  if (!sc->sub) {
+    sc->t0 = sim_time(sc);
+    sc->sub = 1;
+  }
   const double ke_lim = c->settle_ke * sc->m_mean * G_ACC * c->d_mean;
-  dem_sim_stats st;
-  dem_sim_get_stats(sc->sim, &st);
-  const double t0 = st.time;
   int rc;
   for (;;) {
-    dem_sim_get_stats(sc->sim, &st);
-    double t = st.time - t0;
-    double kep = dem_sim_kinetic_energy(sc->sim) / (double)dem_sim_particles(sc->sim)->n;
-    if (t >= c->settle_min_time && kep < ke_lim) break;
-    if (t > c->settle_max_time)
-      return dem_err_set(err, DEM_EPHYSICS,
-                         "scene settle: kinetic energy per particle %.3g J still above %.3g J "
-                         "(settle_ke = %g m g d) after settle_max_time = %g s",
-                         kep, ke_lim, c->settle_ke, c->settle_max_time);
+    if (!sc->resume) { /* the checks come after a complete chunk */
+      double t = sim_time(sc) - sc->t0;
+      double kep = dem_sim_kinetic_energy(sc->sim) / (double)dem_sim_particles(sc->sim)->n;
+      if (t >= c->settle_min_time && kep < ke_lim) break;
+      if (t > c->settle_max_time)
+        return dem_err_set(err, DEM_EPHYSICS,
+                           "scene settle: kinetic energy per particle %.3g J still above %.3g "
+                           "J (settle_ke = %g m g d) after settle_max_time = %g s",
+                           kep, ke_lim, c->settle_ke, c->settle_max_time);
+    }
     if ((rc = chunk(sc, -1.0, err))) return rc; /* no estimate of the remaining time */
   }
   bed_measure(sc);
+  stage_done(sc, DEM_SCENE_STAGE_SETTLED);
   return DEM_OK;
 }
 
 int dem_scene_consolidate(dem_scene *sc, dem_err *err) {
   const dem_scene_config *c = &sc->cfg;
+  GUARD(DEM_SCENE_STAGE_CONSOLIDATED);
   stage_begin(sc, 1);
   int rc;
-  bed_measure(sc);
-  /* bring the piston down to just above the highest particle (no work: no contact) */
   dem_wall_spec pw;
-  dem_sim_wall(sc->sim, sc->w_piston, &pw);
-  double top = highest_top(sc, sc->die_radius);
-  double dp[3] = {0, 0, top + 0.05 * c->d_mean - pw.p[2]};
-  if (dp[2] < 0 && (rc = dem_sim_move_wall(sc->sim, sc->w_piston, dp, err))) return rc;
   const double A = M_PI * sc->die_radius * sc->die_radius, F = c->sigma_pre * A;
-  sc->v_piston = c->strain_rate * sc->bed_top;
-  /* Phase 1: constant velocity (constant strain rate) until the stress reaches
-   * (1 - servo_band) sigma_pre, checked every few steps. */
-  double v[3] = {0, 0, -sc->v_piston};
-  if ((rc = dem_sim_set_wall_velocity(sc->sim, sc->w_piston, v, err))) return rc;
-  dem_sim_stats st;
-  dem_sim_get_stats(sc->sim, &st);
-  const double t0 = st.time, t_max = 1.0 / c->strain_rate; /* 100% strain: give up */
-  const long sub = 10;
-  double z_half = NAN, f_half = NAN, pz;
-  while (piston_stress(sc) < (1.0 - c->servo_band) * c->sigma_pre) {
-    if ((rc = advance(sc, sub, fmin(piston_stress(sc) / c->sigma_pre, 1.0), err))) return rc;
-    dem_sim_get_stats(sc->sim, &st);
-    if (isnan(z_half) && piston_stress(sc) >= 0.5 * c->sigma_pre) {
-      dem_sim_wall(sc->sim, sc->w_piston, &pw);
-      z_half = pw.p[2];
-      f_half = piston_stress(sc) * A;
-    }
-    if (st.time - t0 > t_max) break;
+  if (!sc->sub) {
+    bed_measure(sc);
+    /* bring the piston down to just above the highest particle (no work: no contact) */
+    dem_sim_wall(sc->sim, sc->w_piston, &pw);
+    double top = highest_top(sc, sc->die_radius);
+    double dp[3] = {0, 0, top + 0.05 * c->d_mean - pw.p[2]};
+    if (dp[2] < 0 && (rc = dem_sim_move_wall(sc->sim, sc->w_piston, dp, err))) return rc;
+    sc->v_piston = c->strain_rate * sc->bed_top;
+    /* Phase 1: constant velocity (constant strain rate) until the stress reaches
+     * (1 - servo_band) sigma_pre, checked every few steps. */
+    double v[3] = {0, 0, -sc->v_piston};
+    if ((rc = dem_sim_set_wall_velocity(sc->sim, sc->w_piston, v, err))) return rc;
+    sc->t0 = sim_time(sc);
+    sc->t_max = 1.0 / c->strain_rate; /* 100% strain: give up */
+    sc->z_half = sc->f_half = NAN;
+    sc->sub = 1;
   }
-  dem_sim_wall(sc->sim, sc->w_piston, &pw);
-  pz = pw.p[2];
-  /* the bed's loading stiffness measured over the second half of the loading (N/m) */
-  double K_load = (piston_stress(sc) * A - f_half) / (z_half - pz);
-  /* Phase 2: proportional servo, v = gain (F - f_c) capped at the loading speed, gain =
-   * 1 / (K_bound servo_steps dt) with K_bound = (one contact per d^2 of piston) x k_max,
-   * the stiffest bed the piston can meet: stable for the explicit step whatever the bed.
-   * (A gain from the measured loading stiffness K_load, 10 K_load for the unloading branch
-   * at 200 dt, made the piston and the bed oscillate between 1 and 15 kPa: the bed's own
-   * dynamics, not the step, then limit the gain.) Hold within hold_tol for hold_time. */
-  const double K_bound = A / (c->d_mean * c->d_mean) * sc->k_max;
-  (void)K_load;
-  const double gain = 1.0 / (K_bound * c->servo_steps * sc->dt);
-  if ((rc = dem_sim_set_wall_servo(sc->sim, sc->w_piston, F, gain, sc->v_piston, err)))
-    return rc;
-  double t_in = -1.0; /* time the band was entered */
-  double f_set = F;
+  if (sc->sub == 1) {
+    const long sub = 10;
+    while (sc->resume || piston_stress(sc) < (1.0 - c->servo_band) * c->sigma_pre) {
+      if ((rc = advance(sc, sub, fmin(piston_stress(sc) / c->sigma_pre, 1.0), err))) return rc;
+      if (isnan(sc->z_half) && piston_stress(sc) >= 0.5 * c->sigma_pre) {
+        dem_sim_wall(sc->sim, sc->w_piston, &pw);
+        sc->z_half = pw.p[2];
+        sc->f_half = piston_stress(sc) * A;
+      }
+      if (sim_time(sc) - sc->t0 > sc->t_max) break;
+    }
+    /* Phase 2: proportional servo, v = gain (F - f_c) capped at the loading speed, gain =
+     * 1 / (K_bound servo_steps dt) with K_bound = (one contact per d^2 of piston) x k_max,
+     * the stiffest bed the piston can meet: stable for the explicit step whatever the bed.
+     * (A gain from the measured loading stiffness over the second half of the loading,
+     * (F - f_half) / (z_half - z), 10x for the unloading branch at 200 dt, made the piston
+     * and the bed oscillate between 1 and 15 kPa: the bed's own dynamics, not the step,
+     * then limit the gain.) Hold within hold_tol for hold_time. */
+    const double K_bound = A / (c->d_mean * c->d_mean) * sc->k_max;
+    sc->gain = 1.0 / (K_bound * c->servo_steps * sc->dt);
+    if ((rc = dem_sim_set_wall_servo(sc->sim, sc->w_piston, F, sc->gain, sc->v_piston, err)))
+      return rc;
+    sc->t_in = -1.0; /* time the band was entered */
+    sc->f_set = F;
+    sc->sub = 2;
+  }
   for (;;) {
     if ((rc = chunk(sc, fmin(piston_stress(sc) / c->sigma_pre, 1.0), err))) return rc;
-    dem_sim_get_stats(sc->sim, &st);
-    double s = piston_stress(sc);
+    const double t = sim_time(sc), s = piston_stress(sc);
     /* integral action at the sample rate: a creeping (plastic) bed leaves a proportional
      * servo below its target; move the set point by half the remaining error */
-    f_set += 0.5 * (F - s * A);
-    if ((rc = dem_sim_set_wall_servo(sc->sim, sc->w_piston, f_set, gain, sc->v_piston, err)))
+    sc->f_set += 0.5 * (F - s * A);
+    if ((rc = dem_sim_set_wall_servo(sc->sim, sc->w_piston, sc->f_set, sc->gain, sc->v_piston,
+                                     err)))
       return rc;
     if (fabs(s - c->sigma_pre) <= c->hold_tol * c->sigma_pre) {
-      if (t_in < 0) t_in = st.time;
-      if (st.time - t_in >= c->hold_time) break;
+      if (sc->t_in < 0) sc->t_in = t;
+      if (t - sc->t_in >= c->hold_time) break;
     } else {
-      t_in = -1.0; /* left the band: start the hold again */
+      sc->t_in = -1.0; /* left the band: start the hold again */
     }
-    if (st.time - t0 > t_max)
+    if (t - sc->t0 > sc->t_max)
       return dem_err_set(err, DEM_EPHYSICS,
                          "scene consolidate: piston stress %.4g Pa has not held sigma_pre = "
                          "%g Pa within hold_tol = %g for hold_time = %g s after %g s",
-                         s, c->sigma_pre, c->hold_tol, c->hold_time, t_max);
+                         s, c->sigma_pre, c->hold_tol, c->hold_time, sc->t_max);
   }
+  stage_done(sc, DEM_SCENE_STAGE_CONSOLIDATED);
   return DEM_OK;
 }
 
 int dem_scene_unload(dem_scene *sc, dem_err *err) {
   const dem_scene_config *c = &sc->cfg;
+  GUARD(DEM_SCENE_STAGE_UNLOADED);
   stage_begin(sc, 2);
   int rc;
   double v[3] = {0, 0, sc->v_piston};
-  if ((rc = dem_sim_set_wall_velocity(sc->sim, sc->w_piston, v, err))) return rc;
-  dem_sim_stats st;
-  dem_sim_get_stats(sc->sim, &st);
-  const double t0 = st.time;
+  if (!sc->sub) {
+    if ((rc = dem_sim_set_wall_velocity(sc->sim, sc->w_piston, v, err))) return rc;
+    sc->t0 = sim_time(sc);
+    sc->sub = 1;
+  }
   for (;;) {
     if ((rc = chunk(sc, fmax(0.0, 1.0 - piston_stress(sc) / c->sigma_pre), err))) return rc;
     double f[3];
     dem_sim_wall_load(sc->sim, sc->w_piston, f, NULL, NULL);
-    dem_sim_get_stats(sc->sim, &st);
     if (f[2] == 0.0) break;
-    if (st.time - t0 > 1.0 / c->strain_rate)
+    if (sim_time(sc) - sc->t0 > 1.0 / c->strain_rate)
       return dem_err_set(err, DEM_EPHYSICS, "scene unload: the bed still pushes the piston");
   }
   /* withdraw the piston out of reach of the indentation (no contact: no work) */
@@ -538,62 +609,78 @@ int dem_scene_unload(dem_scene *sc, dem_err *err) {
   double dp[3] = {0, 0, 4.0 * c->indenter_diameter * c->d_mean + 5.0 * c->d_mean};
   if ((rc = dem_sim_move_wall(sc->sim, sc->w_piston, dp, err))) return rc;
   bed_measure(sc);
+  stage_done(sc, DEM_SCENE_STAGE_UNLOADED);
   return DEM_OK;
 }
 
 int dem_scene_indent(dem_scene *sc, dem_err *err) {
   const dem_scene_config *c = &sc->cfg;
-  stage_begin(sc, 3);
+  GUARD(DEM_SCENE_STAGE_INDENTED);
+  stage_begin(sc, sc->sub == 2 ? 4 : 3);
   int rc;
-  const double D = c->indenter_diameter * c->d_mean;
-  sc->ind_r = 0.5 * D;
-  const double top = highest_top(sc, 0.5 * D * (c->shape == DEM_INDENTER_CUBE ? M_SQRT2 : 1.0));
-  const double tip = top + 0.2 * c->d_mean;
-  sc->v_ind = (c->indent_rate > 0 ? c->indent_rate : c->strain_rate) * sc->bed_top;
-  dem_wall_spec w = {DEM_WALL_SPHERE, {0, 0, tip}, {0, 0, -1}, 0.5 * D, {0, 0, -sc->v_ind},
-                     sc->mat_i};
-  if (c->shape == DEM_INDENTER_SPHERE) w.p[2] += 0.5 * D;
-  else w.kind = c->shape == DEM_INDENTER_CYLINDER ? DEM_WALL_FLATCYL : DEM_WALL_BOX;
-  if (sc->w_ind < 0) {
+  if (!sc->sub) {
+    if (sc->w_ind >= 0) return dem_err_set(err, DEM_EINVAL, "scene indent: already indented");
+    const double D = c->indenter_diameter * c->d_mean;
+    sc->ind_r = 0.5 * D;
+    const double top =
+        highest_top(sc, 0.5 * D * (c->shape == DEM_INDENTER_CUBE ? M_SQRT2 : 1.0));
+    const double tip = top + 0.2 * c->d_mean;
+    /* a bed restored with a larger indenter than the one it was unloaded for: keep the
+     * piston out of reach as dem_scene_unload does (never moves it in a plain run) */
+    dem_wall_spec pw;
+    dem_sim_wall(sc->sim, sc->w_piston, &pw);
+    double dp[3] = {0, 0, tip + 4.0 * D + 4.0 * c->d_mean - pw.p[2]};
+    if (dp[2] > 0 && (rc = dem_sim_move_wall(sc->sim, sc->w_piston, dp, err))) return rc;
+    sc->v_ind = (c->indent_rate > 0 ? c->indent_rate : c->strain_rate) * sc->bed_top;
+    dem_wall_spec w = {DEM_WALL_SPHERE, {0, 0, tip}, {0, 0, -1}, 0.5 * D, {0, 0, -sc->v_ind},
+                       sc->mat_i};
+    if (c->shape == DEM_INDENTER_SPHERE) w.p[2] += 0.5 * D;
+    else w.kind = c->shape == DEM_INDENTER_CYLINDER ? DEM_WALL_FLATCYL : DEM_WALL_BOX;
+    /* closed bodies: the cube of side D, the cylinder D long unless configured */
+    if (c->shape == DEM_INDENTER_CUBE) w.length = D;
+    if (c->shape == DEM_INDENTER_CYLINDER)
+      w.length = c->indenter_length > 0 ? c->indenter_length * c->d_mean : D;
     if ((rc = dem_sim_add_wall(sc->sim, &w, &sc->w_ind, err))) return rc;
-  } else {
-    return dem_err_set(err, DEM_EINVAL, "scene indent: already indented");
+    sc->surface = NAN;
+    sc->t0 = sim_time(sc);
+    sc->t_max = (tip - 0.0) / sc->v_ind; /* reaching the base: give up */
+    sc->sub = 1;
   }
-  sc->surface = NAN;
-  const double h_end = c->h_over_r * sc->ind_r;
-  const double t_max = (tip - 0.0) / sc->v_ind; /* reaching the base: give up */
-  dem_sim_stats st;
-  dem_sim_get_stats(sc->sim, &st);
-  const double t0 = st.time;
   row_state rs;
-  for (;;) {
-    ind_state(sc, &rs);
-    double frac = isnan(sc->surface) ? 0.0 : rs.depth / h_end;
-    if ((rc = chunk(sc, frac, err))) return rc;
-    ind_state(sc, &rs);
-    if (isnan(sc->surface) && rs.force > 0.0) {
-      /* first contact: the surface is where the tip is now, minus the travel of this
-       * chunk's contact period (at most one chunk: sample_interval v) — taken as now */
-      sc->surface = rs.ind_z;
+  if (sc->sub == 1) {
+    const double h_end = c->h_over_r * sc->ind_r;
+    for (;;) {
+      ind_state(sc, &rs);
+      double frac = isnan(sc->surface) ? 0.0 : rs.depth / h_end;
+      if ((rc = chunk(sc, frac, err))) return rc;
+      ind_state(sc, &rs);
+      if (isnan(sc->surface) && rs.force > 0.0) {
+        /* first contact: the surface is where the tip is now, minus the travel of this
+         * chunk's contact period (at most one chunk: sample_interval v) — taken as now */
+        sc->surface = rs.ind_z;
+      }
+      if (!isnan(sc->surface) && sc->surface - rs.ind_z >= h_end) break;
+      if (sim_time(sc) - sc->t0 > sc->t_max)
+        return dem_err_set(err, DEM_EPHYSICS, "scene indent: the indenter reached the base");
     }
-    if (!isnan(sc->surface) && sc->surface - rs.ind_z >= h_end) break;
-    dem_sim_get_stats(sc->sim, &st);
-    if (st.time - t0 > t_max)
-      return dem_err_set(err, DEM_EPHYSICS, "scene indent: the indenter reached the base");
-  }
-  if (c->unload) {
+    if (!c->unload) {
+      stage_done(sc, DEM_SCENE_STAGE_INDENTED);
+      return DEM_OK;
+    }
     stage_begin(sc, 4);
     double v[3] = {0, 0, sc->v_ind};
     if ((rc = dem_sim_set_wall_velocity(sc->sim, sc->w_ind, v, err))) return rc;
-    for (;;) {
-      if ((rc = chunk(sc, -1.0, err))) return rc;
-      ind_state(sc, &rs);
-      if (rs.force <= 0.0) break;
-      if (sc->surface - rs.ind_z < -c->d_mean) break;
-    }
-    v[2] = 0.0;
-    dem_sim_set_wall_velocity(sc->sim, sc->w_ind, v, err);
+    sc->sub = 2;
   }
+  for (;;) {
+    if ((rc = chunk(sc, -1.0, err))) return rc;
+    ind_state(sc, &rs);
+    if (rs.force <= 0.0) break;
+    if (sc->surface - rs.ind_z < -c->d_mean) break;
+  }
+  double v[3] = {0, 0, 0};
+  dem_sim_set_wall_velocity(sc->sim, sc->w_ind, v, err);
+  stage_done(sc, DEM_SCENE_STAGE_INDENTED);
   return DEM_OK;
 }
 

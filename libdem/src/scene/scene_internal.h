@@ -26,9 +26,35 @@ struct dem_scene {
   double next_snap;          /* s */
   double last_progress;      /* s of wall clock */
   double stage_wall0;        /* s of wall clock at the stage start */
+  int reached;               /* dem_scene_stage: the last stage completed */
+  /* The stage in progress, kept here (not in locals) so that a stage interrupted by the
+   * engine's interrupt flag continues exactly where it stopped, also from a checkpoint
+   * (restart.c). sub: 0 not begun, then a stage-specific phase >= 1. */
+  int sub;
+  double t0, t_max;          /* s: stage start (simulated), give-up duration */
+  double z_half, f_half;     /* consolidation: piston z (m) and force (N) at half load */
+  double t_in, f_set, gain;  /* servo: band entry time (s), set point (N), gain (m/(N s)) */
+  int resume;                /* 1: an advance was interrupted; finish it first */
+  long pending;              /* steps left of the interrupted advance */
+  /* contacts and stresses (stress.c) */
+  dem_sim_contact *cbuf;     /* engine contact export */
+  size_t ccap;
+  size_t *v_part;            /* dem_contact_view arrays: every pair twice, walls once */
+  double *v_point, *v_force;
+  size_t vcap;
 };
 
+/* scene.c: the three interactions from cfg.pp/pw/pi (stiffness_scale applied), setting
+ * sc->k_max and sc->dt (the engine's dt too); the time-series table. */
+int scene_interactions(dem_scene *sc, dem_err *err);
+dem_table *scene_series_create(dem_err *err);
+
 int scene_fill(dem_scene *sc, dem_err *err);
+/* stress.c: the stress columns of a row (bin_p, bin_q, bin_phi, base_p; NaN where not
+ * defined) and the buffers' release. */
+#define SCENE_NSTRESS 4
+int scene_stress_row(dem_scene *sc, double out[SCENE_NSTRESS], dem_err *err);
+void scene_stress_free(dem_scene *sc);
 void scene_psd_moments(dem_scene_psd psd, double d_mean, double *mean, double *sd);
 
 #endif

@@ -1,0 +1,673 @@
+/* cases.c — the eleven thesis conclusions (thesis 5.3, 6.4, 7.4, 8.1; physics notes "Ball
+ * indentation") as checks whose statistic and pass criterion are fixed here, before any run.
+ *
+ * Conventions of every check:
+ * - H is the plateau mean of the hardness over the tier's h/r window (0.2-0.5), with the
+ *   standard error that allows for the correlation of the series (dem_plateau_stats);
+ *   "sd" is the standard deviation of H over the window (the fluctuation bars of the
+ *   thesis' Figs 5.17, 6.x, 7.3).
+ * - "A > B beyond the fluctuation": one-sided z-test of the two plateau means at level
+ *   h->level (0.05) with se = sqrt(se_A^2 + se_B^2).
+ * - "A and B agree": the two-sided z-test does not find a difference at level / (number of
+ *   pairs compared) (Bonferroni, so that comparing many runs does not manufacture a
+ *   difference).
+ * - Runs on different beds are independent; runs on the same bed share the bed (common
+ *   random numbers), which makes a test of their difference conservative.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "vh.h"
+
+static vh_check *check(vh_case_result *r, const char *what, const char *statistic,
+                       const char *thesis) {
+  if (r->nchecks == VH_MAX_CHECKS) return &r->checks[VH_MAX_CHECKS - 1];
+  vh_check *c = &r->checks[r->nchecks++];
+  memset(c, 0, sizeof *c);
+  snprintf(c->what, sizeof c->what, "%s", what);
+  snprintf(c->statistic, sizeof c->statistic, "%s", statistic);
+  snprintf(c->thesis, sizeof c->thesis, "%s", thesis);
+  c->status = VH_NA;
+  return c;
+}
+
+/* Run (or reuse) an indentation for the case; label and x name it in the case's figures
+ * (x: the varied parameter of the trend figure, NAN if none). */
+static int add_run_x(vh *h, vh_case_result *r, const vh_bed *b, const vh_indent *in,
+                     const char *label, double x, dem_err *err) {
+  int i = vh_run_get(h, b, in, err);
+  if (i < 0) return -1;
+  if (r->nruns < VH_MAX_CASE_RUNS) {
+    snprintf(r->labels[r->nruns], sizeof r->labels[0], "%.39s", label);
+    r->x[r->nruns] = x;
+    r->runs[r->nruns++] = i;
+  }
+  return i;
+}
+
+static int ok(const vh *h, int i) {
+  return i >= 0 && h->runs[i].status == DEM_OK && isfinite(h->runs[i].sH.mean) &&
+         h->runs[i].sH.se > 0;
+}
+
+/* Any failed run makes the case ERROR; the checks that could not be evaluated stay N/A. */
+static vh_status pass(int cond) { return cond ? VH_PASS : VH_FAIL; }
+
+static void kpa(char *b, size_t n, const dem_series_stats *s) {
+  snprintf(b, n, "%.2f +- %.2f kPa (sd %.2f)", s->mean / 1e3, s->se / 1e3, s->sd / 1e3);
+}
+
+/* The bed-to-bed spread of the plateau mean: for runs on different beds the within-run
+ * standard error misses the variation between beds of the same parameters. Estimated from the
+ * reference indentation on the tier's replicate beds (seeds 1..k) as
+ * s_bed^2 = max(0, var(means) - mean(se^2)); 0 with one replicate (then stated in the note).
+ * Applied to the cross-bed tests of cases 2, 8 and 9 as se' = sqrt(se^2 + s_bed^2). */
+static double bed_spread(vh *h, vh_case_result *r, double bed, double D, dem_err *err) {
+  const int k = h->tier->replicates;
+  if (k < 2) {
+    snprintf(r->note, sizeof r->note, "One bed per parameter set: the bed-to-bed spread is "
+                                      "not estimated in this tier (within-run errors only).");
+    return 0.0;
+  }
+  double m[8], se2 = 0, mean = 0;
+  int n = 0;
+  for (int i = 0; i < k && i < 8; i++) {
+    vh_bed b = vh_bed_ref(h, i);
+    b.bed = bed;
+    vh_indent in = vh_indent_ref(h);
+    in.D = D;
+    int j = vh_run_get(h, &b, &in, err);
+    if (j < 0 || !ok(h, j)) continue;
+    m[n++] = h->runs[j].sH.mean;
+    se2 += h->runs[j].sH.se * h->runs[j].sH.se;
+    mean += h->runs[j].sH.mean;
+  }
+  *err = (dem_err){0};
+  if (n < 2) return 0.0;
+  mean /= n;
+  double var = 0;
+  for (int i = 0; i < n; i++) var += (m[i] - mean) * (m[i] - mean) / (n - 1);
+  double s = sqrt(fmax(0.0, var - se2 / n));
+  snprintf(r->note, sizeof r->note, "Bed-to-bed spread of the plateau mean from %d replicate "
+                                    "beds (%g d, indenter %g d): %.2f kPa, added in quadrature "
+                                    "to the standard error of every cross-bed comparison.",
+           n, bed, D, s / 1e3);
+  return s;
+}
+
+static double s_bed_cur = 0.0; /* the spread applied by greater/agree_all (0 within a bed) */
+
+static dem_series_stats widened(const dem_series_stats *s) {
+  dem_series_stats w = *s;
+  w.se = sqrt(s->se * s->se + s_bed_cur * s_bed_cur);
+  return w;
+}
+
+/* One-sided "a > b" as a check. */
+static void greater(vh *h, vh_check *c, int ia, int ib, const char *na, const char *nb) {
+  if (!ok(h, ia) || !ok(h, ib)) return;
+  dem_comparison z;
+  dem_series_stats a = widened(&h->runs[ia].sH), b = widened(&h->runs[ib].sH);
+  if (vh_greater(h, &a, &b, &z)) return;
+  snprintf(c->ours, sizeof c->ours, "H(%s) %.2f, H(%s) %.2f kPa; z = %.2f (crit %.2f), p = %.3g",
+           na, h->runs[ia].sH.mean / 1e3, nb, h->runs[ib].sH.mean / 1e3, z.z, z.z_crit, z.p);
+  c->status = pass(z.different);
+}
+
+/* Pairwise agreement of the plateau means of runs idx[0..n) (Bonferroni). */
+static void agree_all(vh *h, vh_check *c, const int *idx, int n, const char *const *names) {
+  int npairs = n * (n - 1) / 2, all = 1;
+  double zmax = 0;
+  char worst[64] = "";
+  for (int i = 0; i < n; i++)
+    if (!ok(h, idx[i])) return;
+  for (int i = 0; i < n; i++)
+    for (int j = i + 1; j < n; j++) {
+      dem_comparison z;
+      dem_err e = {0};
+      dem_series_stats wa = widened(&h->runs[idx[i]].sH), wb = widened(&h->runs[idx[j]].sH);
+      const dem_series_stats *a = &wa, *b = &wb;
+      if (dem_compare_means(a->mean, a->se, b->mean, b->se, h->level / npairs,
+                            DEM_TEST_TWO_SIDED, &z, &e))
+        return;
+      if (fabs(z.z) > fabs(zmax)) {
+        zmax = z.z;
+        snprintf(worst, sizeof worst, "%s vs %s", names[i], names[j]);
+      }
+      if (z.different) all = 0;
+    }
+  char buf[160] = "";
+  size_t m = 0;
+  for (int i = 0; i < n && m < sizeof buf - 24; i++)
+    m += (size_t)snprintf(buf + m, sizeof buf - m, "%s%s %.2f", i ? ", " : "", names[i],
+                          h->runs[idx[i]].sH.mean / 1e3);
+  dem_comparison zc;
+  dem_err e = {0};
+  dem_compare_means(1, 1, 0, 1, h->level / (npairs ? npairs : 1), DEM_TEST_TWO_SIDED, &zc, &e);
+  snprintf(c->ours, sizeof c->ours, "H [kPa]: %s; max |z| = %.2f (%s), crit %.2f", buf,
+           fabs(zmax), worst, zc.z_crit);
+  c->status = pass(all);
+}
+
+/* Spearman rank correlation of x and y (n <= 16, no ties expected). */
+static double spearman(const double *x, const double *y, int n) {
+  double rx[16], ry[16];
+  for (int i = 0; i < n; i++) {
+    rx[i] = ry[i] = 1;
+    for (int j = 0; j < n; j++) {
+      if (x[j] < x[i]) rx[i]++;
+      if (y[j] < y[i]) ry[i]++;
+    }
+  }
+  double d2 = 0;
+  for (int i = 0; i < n; i++) d2 += (rx[i] - ry[i]) * (rx[i] - ry[i]);
+  return 1.0 - 6.0 * d2 / (n * ((double)n * n - 1.0));
+}
+
+static void finish(vh *h, vh_case_result *r) {
+  int err = 0, fail = 0, any = 0;
+  s_bed_cur = 0.0;
+  for (int i = 0; i < r->nruns; i++)
+    if (h->runs[r->runs[i]].status != DEM_OK) err = 1;
+  for (int i = 0; i < r->nchecks; i++) {
+    if (r->checks[i].status == VH_FAIL) fail = 1;
+    if (r->checks[i].status != VH_NA) any = 1;
+  }
+  r->status = err ? VH_ERROR : fail ? VH_FAIL : any ? VH_PASS : VH_NA;
+}
+
+static void names_D(char names[][24], const double *D, int n, const char *fmt) {
+  for (int i = 0; i < n; i++) snprintf(names[i], 24, fmt, D[i]);
+}
+
+/* ---- 1. plateau ------------------------------------------------------------------------ */
+static int c_plateau(vh *h, vh_case_result *r, dem_err *err) {
+  vh_bed b = vh_bed_ref(h, 0);
+  vh_indent in = vh_indent_ref(h);
+  char lab[40];
+  snprintf(lab, sizeof lab, "sphere %g d", in.D);
+  int i = add_run_x(h, r, &b, &in, lab, NAN, err);
+  if (i < 0) return err->code;
+  const vh_tier *t = h->tier;
+  char what[200];
+  snprintf(what, sizeof what,
+           "H early (h/r %.2f-%.2f) exceeds the plateau H (h/r %.2f-%.2f) beyond the "
+           "fluctuation", t->early_lo, t->early_hi, t->plateau_lo, t->plateau_hi);
+  vh_check *c = check(r, what, "z, one-sided, level 0.05",
+                      "H falls from high early values to a plateau (Figs 5.3-5.6, 5.12)");
+  vh_run *u = &h->runs[i];
+  if (ok(h, i) && isfinite(u->sEarly.mean) && u->sEarly.se > 0) {
+    dem_comparison z;
+    if (!vh_greater(h, &u->sEarly, &u->sH, &z)) {
+      snprintf(c->ours, sizeof c->ours, "early %.2f, plateau %.2f kPa; z = %.2f (crit %.2f)",
+               u->sEarly.mean / 1e3, u->sH.mean / 1e3, z.z, z.z_crit);
+      c->status = pass(z.different);
+    }
+  }
+  c = check(r, "the plateau is flat: the fitted change of H across the window is below 20% "
+               "of its mean",
+            "|slope| x window / mean", "H stabilises beyond h/r ~ 0.35-0.4 (5.2)");
+  if (ok(h, i)) {
+    double rel = fabs(u->sH.slope) * (t->plateau_hi - t->plateau_lo) / u->sH.mean;
+    char s[80];
+    kpa(s, sizeof s, &u->sH);
+    snprintf(c->ours, sizeof c->ours, "%.3f (slope %.2f kPa per unit h/r; H %s)", rel,
+             u->sH.slope / 1e3, s);
+    c->status = pass(rel < 0.2);
+  }
+  c = check(r, "the dynamic-bin hydrostatic stress stops rising: its fitted change across the "
+               "plateau window is below 20% of its mean",
+            "|slope| x window / mean", "rises up to h/r ~ 0.1, then constant (Fig 5.19)");
+  if (ok(h, i) && u->have_stress && isfinite(u->sp.mean) && u->sp.mean > 0) {
+    double rel = fabs(u->sp.slope) * (t->plateau_hi - t->plateau_lo) / u->sp.mean;
+    snprintf(c->ours, sizeof c->ours, "%.3f (bin p %.2f kPa, slope %.2f kPa per unit h/r)",
+             rel, u->sp.mean / 1e3, u->sp.slope / 1e3);
+    c->status = pass(rel < 0.2);
+  }
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 2. bed height --------------------------------------------------------------------- */
+static int c_bed(vh *h, vh_case_result *r, dem_err *err) {
+  r->xlabel = "bed height [d]";
+  r->logx = 0;
+  const vh_tier *t = h->tier;
+  int idx[4];
+  char nm[4][24];
+  const char *names[4];
+  for (int k = 0; k < t->nbeds; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    b.bed = t->beds[k];
+    vh_indent in = vh_indent_ref(h);
+    in.D = t->bed_indenter;
+    snprintf(nm[k], sizeof nm[k], "%g d", t->beds[k]);
+    names[k] = nm[k];
+    char lab[40];
+    snprintf(lab, sizeof lab, "bed %g d", t->beds[k]);
+    if ((idx[k] = add_run_x(h, r, &b, &in, lab, t->beds[k], err)) < 0) return err->code;
+  }
+  s_bed_cur = bed_spread(h, r, t->bed, t->bed_indenter, err);
+  char what[200];
+  snprintf(what, sizeof what, "H of the %g d bed exceeds H of the %g d bed (indenter %g d)",
+           t->beds[0], t->beds[1], t->bed_indenter);
+  vh_check *c = check(r, what, "z, one-sided, level 0.05",
+                      "13 mm bed ~8 kPa vs ~6 kPa at 20-50 mm (Fig 5.12)");
+  greater(h, c, idx[0], idx[1], nm[0], nm[1]);
+  if (t->nbeds >= 3) {
+    c = check(r, "the beds of 20 d and more agree pairwise", "z, two-sided, Bonferroni",
+              "20, 30 and 50 mm give the same ~6 kPa (Fig 5.12)");
+    agree_all(h, c, idx + 1, t->nbeds - 1, names + 1);
+  }
+  s_bed_cur = 0.0;
+  c = check(r, "the indentation raises the stress near the base of the deeper beds by less "
+               "than 10% of H, and by more on the shallowest bed",
+            "(base p at the plateau - before contact) / H",
+            "near the base stresses notable for 13 mm, negligible for 20 mm (Figs 5.10, 5.14)");
+  int have = 1;
+  double rel[4];
+  for (int k = 0; k < t->nbeds; k++) {
+    vh_run *u = &h->runs[idx[k]];
+    if (!ok(h, idx[k]) || !u->have_stress || !isfinite(u->base_p0)) {
+      have = 0;
+      break;
+    }
+    double s = 0;
+    size_t m = 0;
+    for (size_t i = 0; i < u->n; i++)
+      if (u->hr[i] >= t->plateau_lo && u->hr[i] <= t->plateau_hi && isfinite(u->base_p[i]))
+        s += u->base_p[i], m++;
+    rel[k] = m ? (s / (double)m - u->base_p0) / u->sH.mean : NAN;
+    if (!isfinite(rel[k])) have = 0;
+  }
+  if (have) {
+    int deep_ok = 1;
+    size_t m = 0;
+    for (int k = 0; k < t->nbeds; k++) {
+      m += (size_t)snprintf(c->ours + m, sizeof c->ours - m, "%s%s %.3f", k ? ", " : "", nm[k],
+                            rel[k]);
+      if (k > 0 && !(rel[k] < 0.1 && rel[k] < rel[0])) deep_ok = 0;
+    }
+    c->status = pass(deep_ok);
+  }
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 3. indenter size ------------------------------------------------------------------ */
+static int c_size(vh *h, vh_case_result *r, dem_err *err) {
+  r->xlabel = "indenter diameter D [d]";
+  r->logx = 0;
+  const vh_tier *t = h->tier;
+  int idx[6];
+  char nm[6][24];
+  const char *names[6];
+  names_D(nm, t->sizes, t->nsizes, "%g d");
+  for (int k = 0; k < t->nsizes; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    vh_indent in = vh_indent_ref(h);
+    in.D = t->sizes[k];
+    char lab[40];
+    snprintf(lab, sizeof lab, "D %g d", in.D);
+    if ((idx[k] = add_run_x(h, r, &b, &in, lab, in.D, err)) < 0) return err->code;
+    names[k] = nm[k];
+  }
+  int all = 1;
+  double sd[6];
+  for (int k = 0; k < t->nsizes; k++) {
+    if (!ok(h, idx[k])) all = 0;
+    else sd[k] = h->runs[idx[k]].sH.sd;
+  }
+  char what[200];
+  snprintf(what, sizeof what, "the fluctuation sd(H) falls with D: Spearman rho(D, sd) <= -0.6 "
+                              "on the %g d bed", t->bed);
+  vh_check *c = check(r, what, "Spearman rank correlation", "fluctuation grows as D shrinks "
+                                                            "(Figs 5.15-5.17)");
+  if (all) {
+    double rho = spearman(t->sizes, sd, t->nsizes);
+    size_t m = 0;
+    m += (size_t)snprintf(c->ours, sizeof c->ours, "rho = %.2f; sd [kPa]:", rho);
+    for (int k = 0; k < t->nsizes && m < sizeof c->ours; k++)
+      m += (size_t)snprintf(c->ours + m, sizeof c->ours - m, " %s %.2f", nm[k], sd[k] / 1e3);
+    c->status = pass(rho <= -0.6);
+  }
+  snprintf(what, sizeof what, "indenters of %g d and more agree pairwise (stable)",
+           t->stable_from);
+  c = check(r, what, "z, two-sided, Bonferroni", "16-22 d stable at ~6 kPa (Fig 5.15)");
+  int k0 = 0;
+  while (k0 < t->nsizes && t->sizes[k0] < t->stable_from) k0++;
+  if (t->nsizes - k0 >= 2) agree_all(h, c, idx + k0, t->nsizes - k0, names + k0);
+  else {
+    snprintf(c->ours, sizeof c->ours, "only one size >= %g d in this tier", t->stable_from);
+  }
+  /* very large indenter on the shallow bed (wall confinement, Fig 5.6) */
+  vh_bed b = vh_bed_ref(h, 0);
+  b.bed = t->beds[0];
+  vh_indent in = vh_indent_ref(h);
+  in.D = t->bed_indenter;
+  char lab[40];
+  snprintf(lab, sizeof lab, "bed %g d, D %g d", b.bed, in.D);
+  int i1 = add_run_x(h, r, &b, &in, lab, NAN, err);
+  if (i1 < 0) return err->code;
+  in.D = t->wall_indenter;
+  snprintf(lab, sizeof lab, "bed %g d, D %g d", b.bed, in.D);
+  int i2 = add_run_x(h, r, &b, &in, lab, NAN, err);
+  if (i2 < 0) return err->code;
+  snprintf(what, sizeof what, "on the %g d bed in the %g d die, the %g d indenter reads higher "
+                              "than the %g d one (wall confinement)",
+           t->beds[0], t->die, t->wall_indenter, t->bed_indenter);
+  c = check(r, what, "z, one-sided, level 0.05",
+            "22-25 mm on the 13 mm bed ~10 kPa vs ~8 kPa (Fig 5.6)");
+  char a[24], bb[24];
+  snprintf(a, sizeof a, "%g d", t->wall_indenter);
+  snprintf(bb, sizeof bb, "%g d", t->bed_indenter);
+  greater(h, c, i2, i1, a, bb);
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 4. minimum penetration depth ------------------------------------------------------ */
+static int c_depth(vh *h, vh_case_result *r, dem_err *err) {
+  vh_bed b = vh_bed_ref(h, 0);
+  vh_indent in = vh_indent_ref(h);
+  char lab[40];
+  snprintf(lab, sizeof lab, "sphere %g d", in.D);
+  int i = add_run_x(h, r, &b, &in, lab, NAN, err);
+  if (i < 0) return err->code;
+  /* The increase caused by the indentation: the bed keeps a residual stress from its
+   * consolidation, so the rise is counted from the value at the surface (h = 0). */
+  vh_check *c = check(r, "the rise of the dynamic-bin hydrostatic stress over its value at the "
+                         "surface (running mean of 5 samples) first reaches 90% of its plateau "
+                         "rise at h/r in [0.05, 0.2]",
+                      "h/r at 90% of the plateau rise", "about 0.1 (Fig 5.19)");
+  vh_run *u = &h->runs[i];
+  double p0 = NAN;
+  for (size_t k = 0; k < u->n && !isfinite(p0); k++)
+    if (isfinite(u->bin_p[k])) p0 = u->bin_p[k];
+  if (ok(h, i) && u->have_stress && isfinite(u->sp.mean) && isfinite(p0) && u->sp.mean > p0) {
+    double hr90 = NAN, rise = u->sp.mean - p0;
+    for (size_t k = 4; k < u->n; k++) {
+      double s = 0;
+      int m = 0;
+      for (size_t j = k - 4; j <= k; j++)
+        if (isfinite(u->bin_p[j])) s += u->bin_p[j], m++;
+      if (m && s / m - p0 >= 0.9 * rise) {
+        hr90 = u->hr[k - 2];
+        break;
+      }
+    }
+    snprintf(c->ours, sizeof c->ours, "h/r = %.3f (bin p %.2f kPa at the surface, plateau "
+                                      "%.2f kPa)",
+             hr90, p0 / 1e3, u->sp.mean / 1e3);
+    c->status = pass(hr90 >= 0.05 && hr90 <= 0.2);
+  } else if (ok(h, i) && u->have_stress) {
+    snprintf(c->ours, sizeof c->ours, "no rise: bin p %.2f kPa at the surface, plateau %.2f kPa",
+             p0 / 1e3, u->sp.mean / 1e3);
+    c->status = VH_FAIL;
+  }
+  c = check(r, "H at h/r 0.1-0.2 is within 2 sd of the plateau (plastic flow initiated)",
+            "(mean H(0.1-0.2) - plateau) / sd", "the plateau starts near h/r = 0.1-0.4 (5.2)");
+  if (ok(h, i)) {
+    double s = 0;
+    int m = 0;
+    for (size_t k = 0; k < u->n; k++)
+      if (u->hr[k] >= 0.1 && u->hr[k] <= 0.2) s += u->H[k], m++;
+    if (m) {
+      double dev = (s / m - u->sH.mean) / u->sH.sd;
+      snprintf(c->ours, sizeof c->ours, "%.2f (H(0.1-0.2) %.2f kPa, plateau %.2f kPa)", dev,
+               s / m / 1e3, u->sH.mean / 1e3);
+      c->status = pass(fabs(dev) <= 2.0);
+    }
+  }
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 5. indenter stiffness ------------------------------------------------------------- */
+static int c_stiff(vh *h, vh_case_result *r, dem_err *err) {
+  r->xlabel = "indenter stiffness kn [N/m] (Table 6.2 scale)";
+  r->logx = 1;
+  static const double ks[] = {0.01, 0.1, 1.0};
+  int idx[3];
+  char nm[3][24];
+  const char *names[3];
+  for (int k = 0; k < 3; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    vh_indent in = vh_indent_ref(h);
+    in.kn_scale = ks[k];
+    snprintf(nm[k], sizeof nm[k], "kn x%g", ks[k]);
+    if ((idx[k] = add_run_x(h, r, &b, &in, nm[k], 8e6 * ks[k], err)) < 0) return err->code;
+    names[k] = nm[k];
+  }
+  vh_check *c = check(r, "H agrees over two decades of indenter stiffness (x0.01, x0.1, x1 of "
+                         "Table 6.2's 8 MN/m)",
+                      "z, two-sided, Bonferroni", "hardly any effect (Fig 6.1)");
+  agree_all(h, c, idx, 3, names);
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 6. indenter shape ----------------------------------------------------------------- */
+static int c_shape(vh *h, vh_case_result *r, dem_err *err) {
+  int idx[3];
+  for (int k = 0; k < 3; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    vh_indent in = vh_indent_ref(h);
+    in.shape = (dem_indenter_shape)k;
+    static const char *sn[] = {"sphere", "flat cylinder", "cube"};
+    if ((idx[k] = add_run_x(h, r, &b, &in, sn[k], NAN, err)) < 0) return err->code;
+  }
+  vh_check *c = check(r, "the flat cylinder reads higher than the sphere",
+                      "z, one-sided, level 0.05", "markedly higher (Fig 6.2)");
+  greater(h, c, idx[1], idx[0], "cylinder", "sphere");
+  c = check(r, "the cube reads higher than the sphere", "z, one-sided, level 0.05",
+            "markedly higher (Fig 6.2)");
+  greater(h, c, idx[2], idx[0], "cube", "sphere");
+  c = check(r, "the solids fraction of the dynamic bin is higher under the cylinder and the "
+               "cube than under the sphere",
+            "z, one-sided, level 0.05 (each)", "local densification (Fig 6.5)");
+  int have = 1;
+  for (int k = 0; k < 3; k++)
+    if (!ok(h, idx[k]) || !isfinite(h->runs[idx[k]].sphi.mean) ||
+        !(h->runs[idx[k]].sphi.se > 0))
+      have = 0;
+  if (have) {
+    dem_comparison z1, z2;
+    vh_greater(h, &h->runs[idx[1]].sphi, &h->runs[idx[0]].sphi, &z1);
+    vh_greater(h, &h->runs[idx[2]].sphi, &h->runs[idx[0]].sphi, &z2);
+    snprintf(c->ours, sizeof c->ours, "phi sphere %.4f, cylinder %.4f (z %.2f), cube %.4f "
+                                      "(z %.2f)",
+             h->runs[idx[0]].sphi.mean, h->runs[idx[1]].sphi.mean, z1.z,
+             h->runs[idx[2]].sphi.mean, z2.z);
+    c->status = pass(z1.different && z2.different);
+  }
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 7. indenter friction -------------------------------------------------------------- */
+static int c_ifric(vh *h, vh_case_result *r, dem_err *err) {
+  r->xlabel = "indenter sliding friction mu";
+  r->logx = 0;
+  static const double mus[] = {0.0, 0.1, 0.3, 0.5};
+  int idx[4];
+  for (int k = 0; k < 4; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    vh_indent in = vh_indent_ref(h);
+    in.mu_ind = mus[k];
+    char lab[40];
+    snprintf(lab, sizeof lab, "indenter mu %g", mus[k]);
+    if ((idx[k] = add_run_x(h, r, &b, &in, lab, mus[k], err)) < 0) return err->code;
+  }
+  vh_check *c = check(r, "H with indenter friction (mean over mu 0.1, 0.3, 0.5) exceeds H "
+                         "without",
+                      "z, one-sided, level 0.05", "a general, slight increase, notable from "
+                                                  "0 to 0.1 (Fig 6.6)");
+  int have = 1;
+  for (int k = 0; k < 4; k++)
+    if (!ok(h, idx[k])) have = 0;
+  double rise = NAN;
+  if (have) {
+    dem_series_stats pool = h->runs[idx[1]].sH;
+    double m = 0, v = 0;
+    for (int k = 1; k < 4; k++) {
+      m += h->runs[idx[k]].sH.mean / 3.0;
+      v += h->runs[idx[k]].sH.se * h->runs[idx[k]].sH.se / 9.0;
+    }
+    pool.mean = m;
+    pool.se = sqrt(v);
+    dem_comparison z;
+    vh_greater(h, &pool, &h->runs[idx[0]].sH, &z);
+    rise = (m - h->runs[idx[0]].sH.mean) / h->runs[idx[0]].sH.mean;
+    snprintf(c->ours, sizeof c->ours,
+             "H [kPa]: mu 0 %.2f, 0.1 %.2f, 0.3 %.2f, 0.5 %.2f; z = %.2f (crit %.2f)",
+             h->runs[idx[0]].sH.mean / 1e3, h->runs[idx[1]].sH.mean / 1e3,
+             h->runs[idx[2]].sH.mean / 1e3, h->runs[idx[3]].sH.mean / 1e3, z.z, z.z_crit);
+    c->status = pass(z.different);
+  }
+  c = check(r, "the rise is slight: below 30% of H without friction", "relative rise",
+            "slight (6.4)");
+  if (have) {
+    snprintf(c->ours, sizeof c->ours, "%.3f", rise);
+    c->status = pass(rise < 0.3);
+  }
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 8. inter-particle friction -------------------------------------------------------- */
+static int c_pfric(vh *h, vh_case_result *r, dem_err *err) {
+  r->xlabel = "inter-particle sliding friction mu";
+  r->logx = 0;
+  static const double mus[] = {0.05, 0.15, 0.3, 0.5};
+  int idx[4];
+  for (int k = 0; k < 4; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    b.mu = mus[k];
+    vh_indent in = vh_indent_ref(h);
+    char lab[40];
+    snprintf(lab, sizeof lab, "particle mu %g", mus[k]);
+    if ((idx[k] = add_run_x(h, r, &b, &in, lab, mus[k], err)) < 0) return err->code;
+  }
+  s_bed_cur = bed_spread(h, r, h->tier->bed, h->tier->indenter, err);
+  vh_check *c = check(r, "H rises with inter-particle friction: H(0.3) > H(0.05)",
+                      "z, one-sided, level 0.05", "rising (Fig 6.7)");
+  greater(h, c, idx[2], idx[0], "mu 0.3", "mu 0.05");
+  c = check(r, "H saturates: H(0.5) and H(0.3) agree", "z, two-sided, level 0.05",
+            "0.3 and 0.5 alike (Fig 6.7)");
+  const char *nm[] = {"mu 0.3", "mu 0.5"};
+  agree_all(h, c, idx + 2, 2, nm);
+  s_bed_cur = 0.0;
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 9. surface energy ----------------------------------------------------------------- */
+static int c_gamma(vh *h, vh_case_result *r, dem_err *err) {
+  r->xlabel = "interface energy Gamma [J/m^2]";
+  r->logx = 0;
+  static const double gs[] = {0.5, 2.0, 5.0};
+  int idx[3];
+  for (int k = 0; k < 3; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    b.gamma = gs[k];
+    vh_indent in = vh_indent_ref(h);
+    char lab[40];
+    snprintf(lab, sizeof lab, "Gamma %g J/m^2", gs[k]);
+    if ((idx[k] = add_run_x(h, r, &b, &in, lab, gs[k], err)) < 0) return err->code;
+  }
+  s_bed_cur = bed_spread(h, r, h->tier->bed, h->tier->indenter, err);
+  vh_check *c = check(r, "H rises with the interface energy: H(5) > H(2) > H(0.5) J/m^2",
+                      "z, one-sided, level 0.05 (each step)", "rising (Fig 6.8)");
+  if (ok(h, idx[0]) && ok(h, idx[1]) && ok(h, idx[2])) {
+    dem_comparison z1, z2;
+    dem_series_stats w0 = widened(&h->runs[idx[0]].sH), w1 = widened(&h->runs[idx[1]].sH),
+                     w2 = widened(&h->runs[idx[2]].sH);
+    vh_greater(h, &w1, &w0, &z1);
+    vh_greater(h, &w2, &w1, &z2);
+    s_bed_cur = 0.0;
+    snprintf(c->ours, sizeof c->ours, "H [kPa]: %.2f, %.2f, %.2f; z = %.2f, %.2f (crit %.2f)",
+             h->runs[idx[0]].sH.mean / 1e3, h->runs[idx[1]].sH.mean / 1e3,
+             h->runs[idx[2]].sH.mean / 1e3, z1.z, z2.z, z1.z_crit);
+    c->status = pass(z1.different && z2.different);
+  }
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 10. strain rate ------------------------------------------------------------------- */
+static const double rates[] = {0.03, 0.1, 0.23, 0.46, 1.0, 2.3};
+static int c_rate(vh *h, vh_case_result *r, dem_err *err) {
+  r->xlabel = "gamma* = gamma_dot (d/g)^0.5";
+  r->logx = 1;
+  int idx[6];
+  for (int k = 0; k < 6; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    vh_indent in = vh_indent_ref(h);
+    in.gamma_star = rates[k];
+    char lab[40];
+    snprintf(lab, sizeof lab, "gamma* %g", rates[k]);
+    if ((idx[k] = add_run_x(h, r, &b, &in, lab, rates[k], err)) < 0) return err->code;
+  }
+  const char *nm[] = {"0.03", "0.1", "0.23", "0.46"};
+  vh_check *c = check(r, "H is independent of gamma* up to 0.46: the four rates agree pairwise",
+                      "z, two-sided, Bonferroni", "constant up to gamma* ~ 1 (Figs 7.3, 7.4)");
+  agree_all(h, c, idx, 4, nm);
+  c = check(r, "the fluctuation grows from about 0.5: sd(H) at gamma* 0.46 and 1 exceeds sd(H) "
+               "at 0.1",
+            "sd ratio", "fluctuations increase from gamma* = 0.5 (7.4)");
+  if (ok(h, idx[1]) && ok(h, idx[3]) && ok(h, idx[4])) {
+    double r1 = h->runs[idx[3]].sH.sd / h->runs[idx[1]].sH.sd;
+    double r2 = h->runs[idx[4]].sH.sd / h->runs[idx[1]].sH.sd;
+    snprintf(c->ours, sizeof c->ours, "sd ratios %.2f (0.46), %.2f (1.0)", r1, r2);
+    c->status = pass(r1 > 1.0 && r2 > 1.0);
+  }
+  c = check(r, "H rises above gamma* = 1: H(2.3) > H(0.1)", "z, one-sided, level 0.05",
+            "stresses rise above gamma* ~ 1, hardness most (7.2)");
+  greater(h, c, idx[5], idx[1], "2.3", "0.1");
+  finish(h, r);
+  return DEM_OK;
+}
+
+/* ---- 11. time step --------------------------------------------------------------------- */
+static int c_dt(vh *h, vh_case_result *r, dem_err *err) {
+  r->xlabel = "time-step factor zeta";
+  r->logx = 1;
+  static const double zs[] = {0.01, 0.1, 1.0};
+  int idx[3];
+  char nm[3][24];
+  const char *names[3];
+  for (int k = 0; k < 3; k++) {
+    vh_bed b = vh_bed_ref(h, 0);
+    vh_indent in = vh_indent_ref(h);
+    in.gamma_star = 2.3;
+    in.dt_scale = zs[k];
+    snprintf(nm[k], sizeof nm[k], "zeta %g", zs[k]);
+    if ((idx[k] = add_run_x(h, r, &b, &in, nm[k], zs[k], err)) < 0) return err->code;
+    names[k] = nm[k];
+  }
+  vh_check *c = check(r, "at gamma* = 2.3, H agrees for time-step factors 0.01, 0.1 and 1 "
+                         "(times the tier's step)",
+                      "z, two-sided, Bonferroni", "no effect beyond the fluctuation (Fig 7.5)");
+  agree_all(h, c, idx, 3, names);
+  finish(h, r);
+  return DEM_OK;
+}
+
+const vh_case vh_cases[] = {
+    {"plateau", "Hardness plateau and the dynamic-bin stress", "thesis 5.2, Figs 5.3-5.6, 5.19",
+     c_plateau},
+    {"bed-height", "Bed height 13, 20, 30, 50 d", "thesis 5.2, Figs 5.12-5.14", c_bed},
+    {"indenter-size", "Indenter size 7-22 d", "thesis 5.2, Figs 5.6, 5.15-5.17", c_size},
+    {"penetration-depth", "Minimum penetration depth", "thesis 5.2, Fig 5.19", c_depth},
+    {"indenter-stiffness", "Indenter stiffness", "thesis 6.2.1, Fig 6.1", c_stiff},
+    {"indenter-shape", "Indenter shape: sphere, flat cylinder, cube",
+     "thesis 6.2.2, Figs 6.2-6.5", c_shape},
+    {"indenter-friction", "Indenter friction", "thesis 6.2.3, Fig 6.6", c_ifric},
+    {"particle-friction", "Inter-particle friction", "thesis 6.3.1, Fig 6.7", c_pfric},
+    {"surface-energy", "Inter-particle interface energy", "thesis 6.3.2, Fig 6.8", c_gamma},
+    {"strain-rate", "Strain rate gamma* 0.03-2.3", "thesis 7.2, Figs 7.1-7.4", c_rate},
+    {"time-step", "Time-step factor at gamma* = 2.3", "thesis 7.3, Fig 7.5", c_dt},
+};
+const int vh_ncases = (int)(sizeof vh_cases / sizeof vh_cases[0]);

@@ -1,0 +1,190 @@
+/* dem-validate — runs the thesis' ball-indentation conclusions as checks (docs/validation.md).
+ *
+ *   dem-validate [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
+ *                [--threads N] [--level A] [--json] [--list] [--quiet]
+ *
+ * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
+ * one line per case (PASS/FAIL with the numbers), or with --json the summary object on
+ * stdout. Progress goes to stderr. Exit status: 0 every case passed (or had nothing to
+ * check), 3 a criterion failed, 1 a run or the report failed, 2 usage error.
+ */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli_common.h"
+#include "vh.h"
+
+static const char *prog = "dem-validate";
+
+static void usage(FILE *f) {
+  fprintf(f,
+          "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
+          "          [--threads N] [--level A] [--json] [--list] [--quiet]\n"
+          "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
+          "             same geometry, all eleven cases, ~1 h), full (thesis scale, all\n"
+          "             eleven cases, hours) or smoke (tests only)\n"
+          "  --case     run only these cases (see --list), at the tier's scale\n"
+          "  --out      report folder (default validation-<tier>)\n"
+          "  --beds     folder of prepared beds, reused across invocations (default OUT/beds)\n"
+          "  --threads  OpenMP threads per run (default 2)\n"
+          "  --level    significance level of every test (default 0.05)\n"
+          "  --json     print the summary object on stdout\n"
+          "  --list     name the cases and exit\n"
+          "  --quiet    no progress lines (stage, simulated time, ETA every 30 s) on stderr\n",
+          prog);
+}
+
+static int selected(const char *list, const char *name) {
+  if (!list) return -1;
+  size_t n = strlen(name);
+  for (const char *p = list; *p;) {
+    const char *e = strchr(p, ',');
+    size_t m = e ? (size_t)(e - p) : strlen(p);
+    if (m == n && strncmp(p, name, n) == 0) return 1;
+    p += m + (e ? 1 : 0);
+  }
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  static struct option opts[] = {{"tier", required_argument, 0, 't'},
+                                 {"case", required_argument, 0, 'c'},
+                                 {"out", required_argument, 0, 'o'},
+                                 {"beds", required_argument, 0, 'b'},
+                                 {"threads", required_argument, 0, 'j'},
+                                 {"level", required_argument, 0, 'a'},
+                                 {"json", no_argument, 0, 'J'},
+                                 {"list", no_argument, 0, 'l'},
+                                 {"verbose", no_argument, 0, 'v'},
+                                 {"quiet", no_argument, 0, 'q'},
+                                 {"help", no_argument, 0, 'h'},
+                                 {"version", no_argument, 0, 'V'},
+                                 {0, 0, 0, 0}};
+  const char *tier = "quick", *cases = NULL, *out = NULL, *beds = NULL;
+  double threads = 2, level = 0.05;
+  int json = 0, list = 0, verbose = 0, o;
+  dem_err err = {0};
+  opterr = 0;
+  while ((o = getopt_long(argc, argv, ":", opts, NULL)) != -1) {
+    switch (o) {
+    case 't': tier = optarg; break;
+    case 'c': cases = optarg; break;
+    case 'o': out = optarg; break;
+    case 'b': beds = optarg; break;
+    case 'j':
+      if (cli_parse_double("--threads", optarg, 1, 64, &threads, &err)) goto usage_error;
+      break;
+    case 'a':
+      if (cli_parse_double("--level", optarg, 1e-6, 0.5, &level, &err)) goto usage_error;
+      break;
+    case 'J': json = 1; break;
+    case 'l': list = 1; break;
+    case 'v': verbose = 1; break;
+    case 'q': verbose = -1; break;
+    case 'h': usage(stdout); return CLI_EXIT_OK;
+    case 'V': cli_print_version(prog); return CLI_EXIT_OK;
+    default: cli_getopt_error(argv, &err); goto usage_error;
+    }
+  }
+  if (cli_no_operands(argc, argv, &err)) goto usage_error;
+  if (list) {
+    for (int i = 0; i < vh_ncases; i++)
+      printf("%-20s %s (%s)\n", vh_cases[i].name, vh_cases[i].title, vh_cases[i].source);
+    return CLI_EXIT_OK;
+  }
+  const vh_tier *t = vh_tier_find(tier);
+  if (!t) {
+    dem_err_set(&err, DEM_EINVAL, "--tier %s: unknown (allowed: quick, medium, full, smoke)", tier);
+    goto usage_error;
+  }
+  if (cases)
+    for (const char *p = cases; *p;) {
+      const char *e = strchr(p, ',');
+      size_t m = e ? (size_t)(e - p) : strlen(p);
+      int found = 0;
+      for (int i = 0; i < vh_ncases; i++)
+        if (strlen(vh_cases[i].name) == m && strncmp(vh_cases[i].name, p, m) == 0) found = 1;
+      if (!found) {
+        dem_err_set(&err, DEM_EINVAL, "--case %.*s: unknown case (see --list)", (int)m, p);
+        goto usage_error;
+      }
+      p += m + (e ? 1 : 0);
+    }
+
+  vh *h = calloc(1, sizeof *h);
+  vh_case_result *res = calloc((size_t)vh_ncases, sizeof *res);
+  if (!h || !res) {
+    fprintf(stderr, "%s: out of memory\n", prog);
+    return CLI_EXIT_RUN;
+  }
+  h->tier = t;
+  h->threads = (int)threads;
+  h->level = level;
+  h->verbose = verbose;
+  h->t0 = vh_now();
+  if (out) snprintf(h->out, sizeof h->out, "%s", out);
+  else snprintf(h->out, sizeof h->out, "validation-%s", t->name);
+  if (beds) snprintf(h->beds_dir, sizeof h->beds_dir, "%s", beds);
+  else snprintf(h->beds_dir, sizeof h->beds_dir, "%.500s/beds", h->out);
+  mkdir(h->out, 0777);
+  struct stat st;
+  if (stat(h->out, &st) || !S_ISDIR(st.st_mode)) {
+    fprintf(stderr, "%s: --out %s: cannot create the folder\n", prog, h->out);
+    return CLI_EXIT_RUN;
+  }
+
+  int nres = 0, any_fail = 0, any_err = 0;
+  for (int i = 0; i < vh_ncases; i++) {
+    int sel = selected(cases, vh_cases[i].name);
+    if (sel == 0 || (sel < 0 && !(t->cases_mask & (1 << i)))) continue;
+    vh_case_result *r = &res[nres++];
+    r->name = vh_cases[i].name;
+    r->title = vh_cases[i].title;
+    r->source = vh_cases[i].source;
+    vh_log(h, "case %s: %s", r->name, r->title);
+    double t0 = vh_now();
+    dem_err e = {0};
+    if (vh_cases[i].run(h, r, &e)) {
+      r->status = VH_ERROR;
+      snprintf(r->note, sizeof r->note, "setup error: %.380s", e.msg);
+    }
+    r->wall_s = vh_now() - t0;
+    for (int k = 0; k < r->nchecks; k++)
+      fprintf(json ? stderr : stdout, "%-20s %-5s %s: %s (thesis: %s)\n", r->name,
+              vh_status_name(r->checks[k].status), r->checks[k].what,
+              r->checks[k].ours[0] ? r->checks[k].ours : "-", r->checks[k].thesis);
+    fprintf(json ? stderr : stdout, "%-20s %s (%.0f s)\n", r->name, vh_status_name(r->status),
+            r->wall_s);
+    fflush(stdout);
+    if (r->status == VH_FAIL) any_fail = 1;
+    if (r->status == VH_ERROR) any_err = 1;
+    /* the report so far after every case: a long run interrupted later keeps its results */
+    dem_err e2 = {0};
+    if (vh_report_write(h, res, nres, vh_now() - h->t0, &e2)) cli_error(prog, &e2);
+  }
+  double wall = vh_now() - h->t0;
+  if (vh_report_write(h, res, nres, wall, &err)) {
+    cli_error(prog, &err);
+    any_err = 1;
+  } else {
+    vh_log(h, "report: %s/report.md, %s/report.html, %s/summary.json (%.0f s)", h->out, h->out,
+           h->out, wall);
+  }
+  if (json) vh_json_print(h, res, nres, wall, stdout);
+  for (int i = 0; i < h->nruns; i++) {
+    vh_run *u = &h->runs[i];
+    free(u->hr), free(u->H), free(u->bin_p), free(u->bin_q), free(u->bin_phi);
+    free(u->base_p), free(u->F);
+  }
+  free(res);
+  free(h);
+  return any_err ? CLI_EXIT_RUN : any_fail ? 3 : CLI_EXIT_OK;
+
+usage_error:
+  cli_error(prog, &err);
+  usage(stderr);
+  return CLI_EXIT_USAGE;
+}

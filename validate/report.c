@@ -1,0 +1,442 @@
+/* report.c — the report of a validation run: report.md and report.html (one content, two
+ * renderings), summary.json, per-run data files and gnuplot PNG figures in the out folder.
+ * Every file is written to a temporary name and renamed. */
+#include <jansson.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/utsname.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "vh.h"
+
+/* ---- a document written as Markdown and HTML at once ---------------------------------- */
+typedef struct doc {
+  FILE *md, *html;
+} doc;
+
+static void esc(FILE *f, const char *s) {
+  for (; *s; s++) {
+    if (*s == '<') fputs("&lt;", f);
+    else if (*s == '>') fputs("&gt;", f);
+    else if (*s == '&') fputs("&amp;", f);
+    else fputc(*s, f);
+  }
+}
+
+static void d_head(doc *d, int level, const char *fmt, ...) {
+  char b[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(b, sizeof b, fmt, ap);
+  va_end(ap);
+  fprintf(d->md, "\n%.*s %s\n\n", level, "######", b);
+  fprintf(d->html, "<h%d>", level);
+  esc(d->html, b);
+  fprintf(d->html, "</h%d>\n", level);
+}
+
+static void d_para(doc *d, const char *fmt, ...) {
+  char b[2048];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(b, sizeof b, fmt, ap);
+  va_end(ap);
+  fprintf(d->md, "%s\n\n", b);
+  fputs("<p>", d->html);
+  esc(d->html, b);
+  fputs("</p>\n", d->html);
+}
+
+static void d_row(doc *d, int header, int n, const char *const *cells) {
+  fputc('|', d->md);
+  fputs("<tr>", d->html);
+  for (int i = 0; i < n; i++) {
+    /* a '|' inside a cell would split the Markdown row */
+    fputc(' ', d->md);
+    for (const char *s = cells[i]; *s; s++) fputc(*s == '|' ? '/' : *s, d->md);
+    fputs(" |", d->md);
+    fputs(header ? "<th>" : "<td>", d->html);
+    esc(d->html, cells[i]);
+    fputs(header ? "</th>" : "</td>", d->html);
+  }
+  fputs("\n", d->md);
+  fputs("</tr>\n", d->html);
+  if (header) {
+    fputc('|', d->md);
+    for (int i = 0; i < n; i++) fputs("---|", d->md);
+    fputc('\n', d->md);
+  }
+}
+static void d_table_begin(doc *d) { fputs("<table>\n", d->html); }
+static void d_table_end(doc *d) {
+  fputs("\n", d->md);
+  fputs("</table>\n", d->html);
+}
+static void d_img(doc *d, const char *file, const char *alt) {
+  fprintf(d->md, "![%s](%s)\n\n", alt, file);
+  fprintf(d->html, "<p><img src=\"%s\" alt=\"", file);
+  esc(d->html, alt);
+  fputs("\" width=\"720\"></p>\n", d->html);
+}
+
+/* ---- files ----------------------------------------------------------------------------- */
+static FILE *open_tmp(const char *dir, const char *name, char *tmp, size_t len) {
+  snprintf(tmp, len, "%s/.%s.tmp%ld", dir, name, (long)getpid());
+  return fopen(tmp, "w");
+}
+static int close_rename(FILE *f, const char *tmp, const char *dir, const char *name,
+                        dem_err *err) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  int bad = ferror(f);
+  if (fclose(f) || bad || rename(tmp, path)) {
+    remove(tmp);
+    return dem_err_set(err, DEM_EIO, "dem-validate: cannot write %s", path);
+  }
+  return DEM_OK;
+}
+
+/* data/run_NN.dat: h/r, H [Pa], bin p, bin q, bin phi, base p [Pa], F [N]. */
+static int write_run_data(const vh *h, int i, dem_err *err) {
+  char dir[600], name[64], tmp[800];
+  snprintf(dir, sizeof dir, "%s/data", h->out);
+  snprintf(name, sizeof name, "run_%02d.dat", i);
+  FILE *f = open_tmp(dir, name, tmp, sizeof tmp);
+  if (!f) return dem_err_set(err, DEM_EIO, "dem-validate: cannot write %s/%s", dir, name);
+  const vh_run *r = &h->runs[i];
+  fprintf(f, "# %s\n# h/r  H[Pa]  bin_p[Pa]  bin_q[Pa]  bin_phi  base_p[Pa]  F[N]\n", r->label);
+  for (size_t k = 0; k < r->n; k++)
+    fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", r->hr[k], r->H[k], r->bin_p[k],
+            r->bin_q[k], r->bin_phi[k], r->base_p[k], r->F[k]);
+  return close_rename(f, tmp, dir, name, err);
+}
+
+static int have_gnuplot(void) { return system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+static int gnuplot(const vh *h, const char *script, dem_err *err) {
+  char tmp[800];
+  FILE *f = open_tmp(h->out, "plot.gp", tmp, sizeof tmp);
+  if (!f) return dem_err_set(err, DEM_EIO, "dem-validate: cannot write a gnuplot script");
+  fputs(script, f);
+  fclose(f);
+  char cmd[1800];
+  snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot '%s' 2>/dev/null", h->out, tmp);
+  int rc = system(cmd);
+  remove(tmp);
+  return rc == 0 ? DEM_OK : dem_err_set(err, DEM_EIO, "dem-validate: gnuplot failed");
+}
+
+#define HEAD                                                                                 \
+  "set terminal pngcairo size 900,560 font ',11'\nset grid\nset key outside right top\n"
+
+/* H (column 2, kPa) or a stress column against h/r for the case's runs. */
+int vh_plot_runs(const vh *h, const char *png, const char *title, const int *runs, int nruns,
+                 const char *const *labels, int column, dem_err *err) {
+  char s[8192];
+  size_t m = (size_t)snprintf(s, sizeof s, HEAD "set output '%s'\nset title \"%s\"\n"
+                                           "set xlabel 'h/r'\nset xrange [0:*]\n",
+                              png, title);
+  const char *yl = column == 2   ? "H [kPa]"
+                   : column == 5 ? "solids fraction of the dynamic bin"
+                                 : "stress [kPa]";
+  /* the first samples (a few particles under a vanishing area) reach tens of times the
+   * plateau: show the plateau, as the thesis' figures do (they start at one diameter) */
+  double top = 0;
+  for (int i = 0; i < nruns; i++) {
+    const vh_run *r = &h->runs[runs[i]];
+    double v = column == 2 ? r->sH.mean : column == 3 ? r->sp.mean : NAN;
+    if (isfinite(v) && v > top) top = v;
+  }
+  if (top > 0) m += (size_t)snprintf(s + m, sizeof s - m, "set yrange [0:%g]\n", 2.5 * top / 1e3);
+  m += (size_t)snprintf(s + m, sizeof s - m, "set ylabel '%s'\nplot ", yl);
+  for (int i = 0; i < nruns && m < sizeof s - 256; i++) {
+    const char *scale = column == 5 ? "" : "/1000";
+    m += (size_t)snprintf(s + m, sizeof s - m, "%s'data/run_%02d.dat' u 1:($%d%s) w l lw 1.5 "
+                                               "t \"%s\"",
+                          i ? ", " : "", runs[i], column, scale, labels[i]);
+  }
+  snprintf(s + m, sizeof s - m, "\n");
+  return gnuplot(h, s, err);
+}
+
+/* Plateau mean with sd bars (the thesis' fluctuation bars) against the varied parameter. */
+int vh_plot_trend(const vh *h, const char *png, const char *title, const char *xlabel,
+                  const double *x, const int *runs, int nruns, int logx, dem_err *err) {
+  char dat[64], tmp[800];
+  snprintf(dat, sizeof dat, "%.40s.dat", png);
+  FILE *f = open_tmp(h->out, dat, tmp, sizeof tmp);
+  if (!f) return dem_err_set(err, DEM_EIO, "dem-validate: cannot write %s", dat);
+  fprintf(f, "# x  H_mean[Pa]  H_sd  H_se  p_mean  p_sd  q_mean  q_sd\n");
+  for (int i = 0; i < nruns; i++) {
+    const vh_run *r = &h->runs[runs[i]];
+    if (!isfinite(x[i]) || r->status) continue;
+    fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", x[i], r->sH.mean, r->sH.sd,
+            r->sH.se, r->sp.mean, r->sp.sd, r->sq.mean, r->sq.sd);
+  }
+  int rc = close_rename(f, tmp, h->out, dat, err);
+  if (rc) return rc;
+  char s[2048];
+  snprintf(s, sizeof s,
+           HEAD "set output '%s'\nset title \"%s\"\nset xlabel \"%s\"\nset ylabel 'kPa'\n%s"
+                "set offsets graph 0.05, graph 0.05, 0, 0\n"
+                "plot '%s' u 1:($2/1000):($3/1000) w yerrorlines lw 2 t 'H (bars: sd)', "
+                "'' u 1:($5/1000):($6/1000) w yerrorlines t 'dynamic bin hydrostatic', "
+                "'' u 1:($7/1000):($8/1000) w yerrorlines t 'dynamic bin deviatoric'\n",
+           png, title, xlabel, logx ? "set logscale x\n" : "", dat);
+  return gnuplot(h, s, err);
+}
+
+static void case_plots(vh *h, vh_case_result *r, int plots, dem_err *err) {
+  if (!plots || r->nruns == 0) return;
+  const char *labels[VH_MAX_CASE_RUNS];
+  int runs[VH_MAX_CASE_RUNS], n = 0;
+  for (int i = 0; i < r->nruns; i++)
+    if (h->runs[r->runs[i]].status == DEM_OK && h->runs[r->runs[i]].n > 0)
+      runs[n] = r->runs[i], labels[n++] = r->labels[i];
+  if (!n) return;
+  int k = 0;
+  char png[96], title[160];
+  snprintf(png, sizeof png, "%s_H.png", r->name);
+  snprintf(title, sizeof title, "%s: hardness", r->title);
+  if (!vh_plot_runs(h, png, title, runs, n, labels, 2, err)) snprintf(r->plots[k++], 96, "%s", png);
+  int stress = 0;
+  for (int i = 0; i < n; i++) stress |= h->runs[runs[i]].have_stress;
+  if (stress) {
+    snprintf(png, sizeof png, "%s_p.png", r->name);
+    snprintf(title, sizeof title, "%s: hydrostatic stress in the dynamic bin", r->title);
+    if (!vh_plot_runs(h, png, title, runs, n, labels, 3, err))
+      snprintf(r->plots[k++], 96, "%s", png);
+    if (strcmp(r->name, "indenter-shape") == 0) {
+      snprintf(png, sizeof png, "%s_phi.png", r->name);
+      snprintf(title, sizeof title, "%s: solids fraction of the dynamic bin", r->title);
+      if (!vh_plot_runs(h, png, title, runs, n, labels, 5, err))
+        snprintf(r->plots[k++], 96, "%s", png);
+    }
+  }
+  if (r->xlabel) {
+    snprintf(png, sizeof png, "%s_trend.png", r->name);
+    snprintf(title, sizeof title, "%s: plateau means", r->title);
+    if (!vh_plot_trend(h, png, title, r->xlabel, r->x, r->runs, r->nruns, r->logx, err))
+      snprintf(r->plots[k++], 96, "%s", png);
+  }
+  *err = (dem_err){0};
+}
+
+static void machine(char *b, size_t n) {
+  struct utsname u;
+  long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+  if (uname(&u) == 0)
+    snprintf(b, n, "%s %s %s, %ld cores", u.nodename, u.sysname, u.release, cpus);
+  else
+    snprintf(b, n, "%ld cores", cpus);
+}
+
+static void fmt_stats(char *b, size_t n, const dem_series_stats *s, double scale) {
+  if (isfinite(s->mean))
+    snprintf(b, n, "%.3g +- %.2g", s->mean * scale, s->se * scale);
+  else
+    snprintf(b, n, "-");
+}
+
+int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wall_s,
+                    dem_err *err) {
+  vh_case_result *res = (vh_case_result *)cres;
+  char dir[600];
+  snprintf(dir, sizeof dir, "%s/data", h->out);
+  mkdir(dir, 0777);
+  int rc;
+  for (int i = 0; i < h->nruns; i++)
+    if (h->runs[i].status == DEM_OK && (rc = write_run_data(h, i, err))) return rc;
+  int plots = have_gnuplot();
+  for (int i = 0; i < nres; i++) case_plots((vh *)h, &res[i], plots, err);
+
+  char tmd[800], thtml[800];
+  doc d = {open_tmp(h->out, "report.md", tmd, sizeof tmd),
+           open_tmp(h->out, "report.html", thtml, sizeof thtml)};
+  if (!d.md || !d.html) {
+    if (d.md) fclose(d.md), remove(tmd);
+    if (d.html) fclose(d.html), remove(thtml);
+    return dem_err_set(err, DEM_EIO, "dem-validate: cannot write the report in %s", h->out);
+  }
+  fputs("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>DEM validation report"
+        "</title><style>body{font-family:sans-serif;max-width:1100px;margin:auto}"
+        "table{border-collapse:collapse}td,th{border:1px solid #999;padding:3px 6px;"
+        "font-size:90%}</style></head><body>\n",
+        d.html);
+  const vh_tier *t = h->tier;
+  char mach[256], when[64];
+  machine(mach, sizeof mach);
+  time_t now = time(NULL);
+  strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", gmtime(&now));
+  int npass = 0, nfail = 0, nother = 0;
+  for (int i = 0; i < nres; i++) {
+    if (res[i].status == VH_PASS) npass++;
+    else if (res[i].status == VH_FAIL) nfail++;
+    else nother++;
+  }
+  d_head(&d, 1, "Ball-indentation validation report (tier %s)", t->name);
+  d_para(&d, "%s on %s, %d threads; wall time %.0f s (%.1f min). Cases: %d PASS, %d FAIL, %d "
+             "other. Produced by `dem-validate --tier %s` (docs/validation.md explains the "
+             "cases, criteria and settings).",
+         when, mach, h->threads, wall_s, wall_s / 60, npass, nfail, nother, t->name);
+  d_para(&d, "Scene: chapter 6/7 materials (pasha-simplified, thesis Tables 6.1-6.3) with "
+             "every stiffness scaled by %g, die %g d, reference bed %g d, reference sphere "
+             "%g d, pre-consolidation 10 kPa, all rates gamma* = %g (gamma_dot = v / h_bed) "
+             "unless varied, dt = %g sqrt(m_min / k_max). Plateau window h/r %.2f-%.2f; "
+             "early window %.2f-%.2f; significance level %.2f.",
+         t->stiffness_scale, t->die, t->bed, t->indenter, t->gamma_star, t->dt_factor,
+         t->plateau_lo, t->plateau_hi, t->early_lo, t->early_hi, h->level);
+
+  d_head(&d, 2, "Summary");
+  d_table_begin(&d);
+  const char *hdr[] = {"case", "status", "criterion", "statistic", "ours", "thesis"};
+  d_row(&d, 1, 6, hdr);
+  for (int i = 0; i < nres; i++)
+    for (int k = 0; k < res[i].nchecks; k++) {
+      const vh_check *c = &res[i].checks[k];
+      const char *cells[] = {k ? "" : res[i].name, vh_status_name(c->status), c->what,
+                             c->statistic, c->ours[0] ? c->ours : "-", c->thesis};
+      d_row(&d, 0, 6, cells);
+    }
+  d_table_end(&d);
+
+  d_head(&d, 2, "Beds (each prepared once, reused by every indentation on it)");
+  d_table_begin(&d);
+  const char *bh[] = {"bed [d]", "die [d]", "seed", "mu", "Gamma [J/m^2]", "particles",
+                      "solids fraction", "dt [s]", "preparation [s]"};
+  d_row(&d, 1, 9, bh);
+  for (int i = 0; i < h->nbeds; i++) {
+    const vh_bed *b = &h->beds[i];
+    char c[9][48];
+    snprintf(c[0], 48, "%g", b->bed), snprintf(c[1], 48, "%g", b->die);
+    snprintf(c[2], 48, "%lu", b->seed), snprintf(c[3], 48, "%g", b->mu);
+    snprintf(c[4], 48, "%g", b->gamma), snprintf(c[5], 48, "%zu", b->n);
+    snprintf(c[6], 48, "%.3f", b->phi), snprintf(c[7], 48, "%.3g", b->dt);
+    snprintf(c[8], 48, "%.0f", b->wall_s);
+    const char *cells[9];
+    for (int k = 0; k < 9; k++) cells[k] = c[k];
+    d_row(&d, 0, 9, cells);
+  }
+  d_table_end(&d);
+
+  for (int i = 0; i < nres; i++) {
+    const vh_case_result *r = &res[i];
+    d_head(&d, 2, "%d. %s: %s", i + 1, r->title, vh_status_name(r->status));
+    d_para(&d, "Case `%s`, %s. Wall time of its new beds and runs: %.0f s.%s%s", r->name,
+           r->source, r->wall_s, r->note[0] ? " " : "", r->note);
+    for (int k = 0; k < 4; k++)
+      if (r->plots[k][0]) d_img(&d, r->plots[k], r->plots[k]);
+    d_table_begin(&d);
+    const char *rh[] = {"run", "H [kPa]", "sd(H) [kPa]", "bin p [kPa]", "bin q [kPa]",
+                        "bin phi", "surface sd [d]", "steps", "wall [s]", "status"};
+    d_row(&d, 1, 10, rh);
+    for (int k = 0; k < r->nruns; k++) {
+      const vh_run *u = &h->runs[r->runs[k]];
+      char c[10][96];
+      snprintf(c[0], 96, "%s", r->labels[k]);
+      fmt_stats(c[1], 96, &u->sH, 1e-3);
+      snprintf(c[2], 96, "%.3g", u->sH.sd / 1e3);
+      fmt_stats(c[3], 96, &u->sp, 1e-3);
+      fmt_stats(c[4], 96, &u->sq, 1e-3);
+      fmt_stats(c[5], 96, &u->sphi, 1.0);
+      snprintf(c[6], 96, "%.2f", u->surface_sd / 1e-3);
+      snprintf(c[7], 96, "%ld", u->steps);
+      snprintf(c[8], 96, "%.0f", u->wall_s);
+      snprintf(c[9], 96, "%s", u->status ? u->error : "ok");
+      const char *cells[10];
+      for (int j = 0; j < 10; j++) cells[j] = c[j];
+      d_row(&d, 0, 10, cells);
+    }
+    d_table_end(&d);
+  }
+  d_head(&d, 2, "Speed versus accuracy, stability");
+  d_para(&d, "The settings of the tiers (stiffness scale, gamma*, time-step factor, die size) "
+             "are justified by the speed-versus-accuracy study and the stability map in "
+             "docs/validation-study.md (`dem-bench-scene --study speed|stability`).");
+  fputs("</body></html>\n", d.html);
+  if ((rc = close_rename(d.md, tmd, h->out, "report.md", err))) {
+    fclose(d.html);
+    remove(thtml);
+    return rc;
+  }
+  if ((rc = close_rename(d.html, thtml, h->out, "report.html", err))) return rc;
+
+  char tj[800];
+  FILE *f = open_tmp(h->out, "summary.json", tj, sizeof tj);
+  if (!f) return dem_err_set(err, DEM_EIO, "dem-validate: cannot write summary.json");
+  vh_json_print(h, res, nres, wall_s, f);
+  return close_rename(f, tj, h->out, "summary.json", err);
+}
+
+static json_t *jnum(double v) { return isfinite(v) ? json_real(v) : json_null(); }
+
+static json_t *jstats(const dem_series_stats *s) {
+  return json_pack("{s:o,s:o,s:o,s:o,s:o}", "mean", jnum(s->mean), "se", jnum(s->se), "sd",
+                   jnum(s->sd), "slope", jnum(s->slope), "n_eff", jnum(s->n_eff));
+}
+
+int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_s, FILE *f) {
+  json_t *root = json_object(), *cases = json_array(), *beds = json_array();
+  const vh_tier *t = h->tier;
+  json_object_set_new(root, "tier", json_string(t->name));
+  json_object_set_new(root, "wall_s", jnum(wall_s));
+  json_object_set_new(root, "threads", json_integer(h->threads));
+  json_object_set_new(root, "level", jnum(h->level));
+  json_object_set_new(root, "settings",
+                      json_pack("{s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "die_d", t->die, "bed_d",
+                                t->bed, "indenter_d", t->indenter, "gamma_star", t->gamma_star,
+                                "stiffness_scale", t->stiffness_scale, "dt_factor",
+                                t->dt_factor, "plateau_h_over_r", t->plateau_lo,
+                                t->plateau_hi));
+  for (int i = 0; i < h->nbeds; i++) {
+    const vh_bed *b = &h->beds[i];
+    json_array_append_new(
+        beds, json_pack("{s:f,s:f,s:I,s:f,s:f,s:I,s:o,s:o,s:o}", "bed_d", b->bed, "die_d",
+                        b->die, "seed", (json_int_t)b->seed, "mu", b->mu, "gamma", b->gamma,
+                        "particles", (json_int_t)b->n, "solids_fraction", jnum(b->phi), "dt",
+                        jnum(b->dt), "wall_s", jnum(b->wall_s)));
+  }
+  for (int i = 0; i < nres; i++) {
+    const vh_case_result *r = &res[i];
+    json_t *c = json_object(), *checks = json_array(), *runs = json_array();
+    json_object_set_new(c, "name", json_string(r->name));
+    json_object_set_new(c, "title", json_string(r->title));
+    json_object_set_new(c, "status", json_string(vh_status_name(r->status)));
+    const vh_check *p = r->nchecks ? &r->checks[0] : NULL;
+    json_object_set_new(c, "statistic", json_string(p ? p->statistic : ""));
+    json_object_set_new(c, "ours", json_string(p ? p->ours : ""));
+    json_object_set_new(c, "thesis", json_string(p ? p->thesis : ""));
+    json_object_set_new(c, "wall_s", jnum(r->wall_s));
+    for (int k = 0; k < r->nchecks; k++) {
+      const vh_check *q = &r->checks[k];
+      json_array_append_new(checks, json_pack("{s:s,s:s,s:s,s:s,s:s}", "criterion", q->what,
+                                              "status", vh_status_name(q->status), "statistic",
+                                              q->statistic, "ours", q->ours, "thesis",
+                                              q->thesis));
+    }
+    for (int k = 0; k < r->nruns; k++) {
+      const vh_run *u = &h->runs[r->runs[k]];
+      json_t *j = json_pack("{s:s,s:s,s:o,s:o,s:o,s:o,s:o,s:o,s:I,s:o,s:I}", "label",
+                            r->labels[k], "status", u->status ? u->error : "ok", "x",
+                            jnum(r->x[k]), "H", jstats(&u->sH), "bin_p", jstats(&u->sp),
+                            "bin_q", jstats(&u->sq), "bin_phi", jstats(&u->sphi), "wall_s",
+                            jnum(u->wall_s), "steps", (json_int_t)u->steps, "dt", jnum(u->dt),
+                            "samples", (json_int_t)u->n);
+      json_array_append_new(runs, j);
+    }
+    json_object_set_new(c, "checks", checks);
+    json_object_set_new(c, "runs", runs);
+    json_array_append_new(cases, c);
+  }
+  json_object_set_new(root, "beds", beds);
+  json_object_set_new(root, "cases", cases);
+  int rc = json_dumpf(root, f, JSON_INDENT(1) | JSON_REAL_PRECISION(8));
+  fputc('\n', f);
+  json_decref(root);
+  return rc;
+}

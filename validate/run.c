@@ -1,0 +1,384 @@
+/* run.c — tiers, beds prepared once and reused, indentation runs and their statistics.
+ *
+ * A bed is prepared by the scene pipeline (fill, settle, consolidate to 10 kPa, unload;
+ * dem/scene.h) and saved as a scene checkpoint; every indentation restores it with its own
+ * indenter (dem_scene_restore), so the variants of a case start from the identical bed.
+ * Hardness is recomputed here from the indenter tip and force of the time series with the
+ * depth measured from the bed surface under the footprint (dem_bed_surface, docs/analysis.md):
+ * H = F / A(h), thesis 2.7-2.9, h/r thesis 5.5.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "dem/params.h"
+#include "dem/table.h"
+#include "vh.h"
+
+#define G_ACC 9.81   /* m/s^2 */
+#define D_MEAN 1e-3  /* m, thesis mean diameter */
+
+/* The tiers (geometry in d; docs/validation.md gives the reasons).
+ * quick:  thesis geometry scaled by ~0.6 (die 20 d, bed 12 d, sphere 8 d: indenter/die 0.4
+ *         as the thesis' 16/45; bed heights 8 and 12 d under an 8 d ball keep the ratios
+ *         bed/indenter 1.0 and 1.5 of its 13 and 20 mm beds under a 13 mm ball); cases 1-3.
+ * medium: the quick geometry for all eleven cases (bed heights 8, 12, 18, 30 d = the thesis'
+ *         13, 20, 30, 50 scaled by 8/13; indenter sizes 4-10 d; replicate beds).
+ * full:   thesis scale (chapters 5-7: die 45 d, bed 20 d, sphere 16 d, bed heights 13, 20,
+ *         30, 50 d, sizes 7-22 d, the 25 d ball on the 13 d bed); hours on 2 cores.
+ * smoke:  the smallest scene that exercises every path (tests; not a validation).
+ * Plateau window: h/r 0.2-0.5 (thesis: stress constant from ~0.1, hardness from ~0.35-0.4,
+ * stresses rise again beyond 0.5), starting no earlier than one particle diameter of depth
+ * under the reference sphere (the thesis shows data only beyond one diameter, 5.2): 0.25
+ * for the 8 d sphere of quick/medium. */
+static const vh_tier tiers[] = {
+    {"quick", 20.0, 12.0, 8.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.25, 0.5, 0.02, 0.1,
+     2, {8.0, 12.0}, 8.0, 4, {4.0, 6.0, 8.0, 10.0}, 8.0, 12.0, 1, 0x7},
+    {"medium", 20.0, 12.0, 8.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.25, 0.5, 0.02, 0.1,
+     4, {8.0, 12.0, 18.0, 30.0}, 8.0, 6, {4.0, 5.0, 6.0, 7.0, 8.0, 10.0}, 7.0, 12.0, 2, 0x7ff},
+    {"full", 45.0, 20.0, 16.0, 0.1, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
+     4, {13.0, 20.0, 30.0, 50.0}, 13.0, 6, {7.0, 10.0, 13.0, 16.0, 19.0, 22.0}, 16.0, 25.0, 2,
+     0x7ff},
+    {"smoke", 10.0, 6.0, 4.0, 0.2, 0.01, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
+     2, {4.0, 6.0}, 4.0, 3, {3.0, 4.0, 5.0}, 4.0, 7.0, 1, 0x7},
+};
+
+const vh_tier *vh_tier_find(const char *name) {
+  for (size_t i = 0; i < sizeof tiers / sizeof tiers[0]; i++)
+    if (strcmp(tiers[i].name, name) == 0) return &tiers[i];
+  return NULL;
+}
+
+const char *vh_status_name(vh_status s) {
+  static const char *n[] = {"PASS", "FAIL", "ERROR", "N/A"};
+  return n[s];
+}
+
+double vh_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void vh_log(const vh *h, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "[%6.0f s] ", vh_now() - h->t0);
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  fflush(stderr);
+  va_end(ap);
+}
+
+/* gamma* = gamma_dot sqrt(d/g) (thesis 5.4 / 7.1) -> gamma_dot in 1/s. */
+static double rate_of(double gamma_star) { return gamma_star / sqrt(D_MEAN / G_ACC); }
+
+vh_bed vh_bed_ref(const vh *h, int replicate) {
+  vh_bed b;
+  memset(&b, 0, sizeof b);
+  b.bed = h->tier->bed;
+  b.die = h->tier->die;
+  b.seed = 1 + (unsigned long)replicate;
+  b.mu = 0.15;   /* Table 6.3 */
+  b.gamma = 2.0; /* Table 6.3, J/m^2 */
+  return b;
+}
+
+vh_indent vh_indent_ref(const vh *h) {
+  vh_indent i = {DEM_INDENTER_SPHERE, h->tier->indenter, h->tier->gamma_star, 1.0, 0.0, 1.0};
+  return i;
+}
+
+/* The scene configuration of a bed (and of the reference indentation on it). */
+static int bed_config(const vh *h, const vh_bed *b, dem_scene_config *c, dem_err *err) {
+  const vh_tier *t = h->tier;
+  dem_scene_config_defaults(c, DEM_SCENE_PASHA);
+  c->die_diameter = b->die;
+  c->bed_height = b->bed;
+  c->seed = b->seed;
+  c->fill_fraction = t->fill_fraction;
+  c->settle_max_time = 2.0;
+  c->strain_rate = rate_of(t->gamma_star);
+  c->stiffness_scale = t->stiffness_scale;
+  c->dt_factor = t->dt_factor;
+  c->threads = h->threads;
+  c->indenter_diameter = fmin(t->indenter, 0.9 * b->die);
+  c->h_over_r = t->h_end;
+  int rc;
+  if ((rc = dem_params_set(&c->pp, "mu", b->mu, "dem-validate", err)) ||
+      (rc = dem_params_set(&c->pp, "gamma", b->gamma, "dem-validate", err)))
+    return rc;
+  return dem_scene_config_check(c, err);
+}
+
+static void bed_name(const vh *h, const vh_bed *b, char *buf, size_t len) {
+  const vh_tier *t = h->tier;
+  snprintf(buf, len, "bed%g_die%g_seed%lu_mu%g_gamma%g_k%g_dt%g_g%g_f%g", b->bed, b->die,
+           b->seed, b->mu, b->gamma, t->stiffness_scale, t->dt_factor, t->gamma_star,
+           t->fill_fraction);
+}
+
+static int mkdir_p(const char *dir) {
+  char tmp[512];
+  snprintf(tmp, sizeof tmp, "%s", dir);
+  for (char *p = tmp + 1; *p; p++)
+    if (*p == '/') {
+      *p = 0;
+      mkdir(tmp, 0777);
+      *p = '/';
+    }
+  return mkdir(tmp, 0777) == 0 || access(tmp, W_OK) == 0 ? 0 : -1;
+}
+
+static void progress(const char *stage, double t, double frac, double eta, void *user) {
+  const vh *h = user;
+  if (h->verbose < 0) return;
+  char f[32] = "", e[32] = "";
+  if (frac >= 0) snprintf(f, sizeof f, " %3.0f%%", 100.0 * frac);
+  if (eta >= 0) snprintf(e, sizeof e, ", stage ETA %.0f s", eta);
+  vh_log(h, "  %-11s t = %.4f s%s%s", stage, t, f, e);
+}
+
+static int same_bed(const vh_bed *a, const vh_bed *b) {
+  return a->bed == b->bed && a->die == b->die && a->seed == b->seed && a->mu == b->mu &&
+         a->gamma == b->gamma;
+}
+
+int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
+  for (int i = 0; i < h->nbeds; i++)
+    if (same_bed(&h->beds[i], spec)) return i;
+  if (h->nbeds == VH_MAX_BEDS) {
+    dem_err_set(err, DEM_ERANGE, "dem-validate: more than %d beds", VH_MAX_BEDS);
+    return -1;
+  }
+  vh_bed *b = &h->beds[h->nbeds];
+  *b = *spec;
+  char name[256];
+  bed_name(h, b, name, sizeof name);
+  if (mkdir_p(h->beds_dir)) {
+    dem_err_set(err, DEM_EIO, "dem-validate: cannot create the bed folder %s", h->beds_dir);
+    return -1;
+  }
+  snprintf(b->path, sizeof b->path, "%.300s/%.200s.h5", h->beds_dir, name);
+  dem_scene_config c;
+  if (bed_config(h, b, &c, err)) return -1;
+  dem_scene_hooks hk = {progress, 30.0, NULL, 0.0, h};
+  double t0 = vh_now();
+  dem_scene *sc = NULL;
+  if (access(b->path, R_OK) == 0) {
+    /* A bed prepared by an earlier invocation with the same parameters (--beds DIR). */
+    sc = dem_scene_restore(b->path, NULL, &hk, err);
+    if (!sc) return -1;
+    if (dem_scene_get_stage(sc) < DEM_SCENE_STAGE_UNLOADED) {
+      dem_scene_free(sc);
+      dem_err_set(err, DEM_EINVAL, "dem-validate: %s is not an unloaded bed", b->path);
+      return -1;
+    }
+    vh_log(h, "bed %s: reused %s", name, b->path);
+  } else {
+    vh_log(h, "bed %s: preparing (fill, settle, consolidate to 10 kPa, unload)", name);
+    sc = dem_scene_create(&c, &hk, err);
+    int rc = sc ? DEM_OK : err->code;
+    if (!rc) rc = dem_scene_fill(sc, err);
+    if (!rc) rc = dem_scene_settle(sc, err);
+    if (!rc) rc = dem_scene_consolidate(sc, err);
+    if (!rc) rc = dem_scene_unload(sc, err);
+    if (!rc) rc = dem_scene_save(sc, b->path, err);
+    if (rc) {
+      dem_scene_free(sc);
+      return -1;
+    }
+  }
+  dem_scene_info in;
+  dem_scene_get_info(sc, &in);
+  b->n = in.n;
+  b->phi = in.phi;
+  b->bed_top = in.bed_top;
+  b->dt = in.dt;
+  b->wall_s = vh_now() - t0;
+  b->ready = 1;
+  dem_scene_free(sc);
+  vh_log(h, "bed %s: %zu particles, bed top %.2f d, solids fraction %.3f, %.0f s", name, b->n,
+         b->bed_top / D_MEAN, b->phi, b->wall_s);
+  return h->nbeds++;
+}
+
+static int same_indent(const vh_indent *a, const vh_indent *b) {
+  return a->shape == b->shape && a->D == b->D && a->gamma_star == b->gamma_star &&
+         a->kn_scale == b->kn_scale && a->mu_ind == b->mu_ind && a->dt_scale == b->dt_scale;
+}
+
+static const char *shape_name(dem_indenter_shape s) {
+  return s == DEM_INDENTER_SPHERE ? "sphere" : s == DEM_INDENTER_CYLINDER ? "cylinder" : "cube";
+}
+
+/* Column of the series by name, or -1. */
+static int col(const dem_table *t, const char *name) { return dem_table_col(t, name); }
+
+static int series_extract(vh *h, vh_run *r, const dem_table *t, dem_err *err) {
+  const int cs = col(t, "stage"), cz = col(t, "indenter_z"), cf = col(t, "indenter_force");
+  if (cs < 0 || cz < 0 || cf < 0)
+    return dem_err_set(err, DEM_EINVAL, "dem-validate: the time series lacks stage, "
+                                        "indenter_z or indenter_force");
+  const int cp = col(t, "bin_p"), cq = col(t, "bin_q"), cphi = col(t, "bin_phi"),
+            cb = col(t, "base_p");
+  long nr = dem_table_nrows(t);
+  size_t cap = (size_t)nr + 1;
+  double **arr[] = {&r->hr, &r->H, &r->bin_p, &r->bin_q, &r->bin_phi, &r->base_p, &r->F};
+  for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++) {
+    *arr[k] = calloc(cap, sizeof(double));
+    if (!*arr[k]) return dem_err_set(err, DEM_ENOMEM, "dem-validate: out of memory");
+  }
+  const double D = r->ind.D * D_MEAN, rad = 0.5 * D;
+  r->n = 0;
+  r->base_p0 = NAN;
+  for (long i = 0; i < nr; i++) {
+    if ((int)dem_table_get(t, i, cs) != 3) continue; /* loading only */
+    double hh = r->surface - dem_table_get(t, i, cz);
+    double F = dem_table_get(t, i, cf);
+    double bp = cb >= 0 ? dem_table_get(t, i, cb) : NAN;
+    if (hh <= 0.0) {
+      if (isfinite(bp)) r->base_p0 = bp; /* the last value before the surface is reached */
+      continue;
+    }
+    size_t k = r->n++;
+    r->hr[k] = hh / rad;
+    r->F[k] = F;
+    r->H[k] = F / dem_scene_indent_area(r->ind.shape, D, hh);
+    r->bin_p[k] = cp >= 0 ? dem_table_get(t, i, cp) : NAN;
+    r->bin_q[k] = cq >= 0 ? dem_table_get(t, i, cq) : NAN;
+    r->bin_phi[k] = cphi >= 0 ? dem_table_get(t, i, cphi) : NAN;
+    r->base_p[k] = bp;
+  }
+  r->have_stress = cp >= 0 && cq >= 0;
+  (void)h;
+  return DEM_OK;
+}
+
+/* Plateau statistics of y over [lo, hi]; on failure mean = NaN. */
+static void stats(const vh_run *r, const double *y, double lo, double hi, dem_series_stats *s) {
+  dem_err e = {0};
+  memset(s, 0, sizeof *s);
+  /* only finite samples: the stress columns are NaN where undefined */
+  double *x = malloc((r->n + 1) * sizeof *x), *v = malloc((r->n + 1) * sizeof *v);
+  size_t m = 0;
+  for (size_t i = 0; x && v && i < r->n; i++)
+    if (isfinite(y[i]) && isfinite(r->hr[i])) x[m] = r->hr[i], v[m++] = y[i];
+  if (!x || !v || dem_plateau_stats(m, x, v, lo, hi, NULL, s, &e)) {
+    memset(s, 0, sizeof *s);
+    s->mean = s->se = s->sd = s->cv = s->slope = NAN;
+  }
+  free(x);
+  free(v);
+}
+
+int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
+  int bi = vh_bed_get(h, bspec, err);
+  if (bi < 0) return -1;
+  for (int i = 0; i < h->nruns; i++)
+    if (h->runs[i].bed == bi && same_indent(&h->runs[i].ind, ind)) return i;
+  if (h->nruns == VH_MAX_RUNS) {
+    dem_err_set(err, DEM_ERANGE, "dem-validate: more than %d runs", VH_MAX_RUNS);
+    return -1;
+  }
+  const vh_tier *t = h->tier;
+  vh_bed *b = &h->beds[bi];
+  vh_run *r = &h->runs[h->nruns];
+  memset(r, 0, sizeof *r);
+  r->bed = bi;
+  r->ind = *ind;
+  snprintf(r->label, sizeof r->label, "bed %g d, %s %g d, gamma* %g, kn x%g, mu_i %g, dt x%g",
+           b->bed, shape_name(ind->shape), ind->D, ind->gamma_star, ind->kn_scale, ind->mu_ind,
+           ind->dt_scale);
+  dem_scene_config o;
+  if (bed_config(h, b, &o, err)) return -1;
+  o.shape = ind->shape;
+  o.indenter_diameter = ind->D;
+  o.indent_rate = rate_of(ind->gamma_star);
+  o.h_over_r = t->h_end;
+  o.dt_factor = t->dt_factor * ind->dt_scale;
+  /* particle-indenter stiffness and friction (Table 6.3; 6.2.1, 6.2.3) */
+  double kn = dem_params_get_or(&o.pi, "kn", 8e6), kt = dem_params_get_or(&o.pi, "kt", 8e6);
+  if (dem_params_set(&o.pi, "kn", kn * ind->kn_scale, "dem-validate", err) ||
+      dem_params_set(&o.pi, "kt", kt * ind->kn_scale, "dem-validate", err) ||
+      dem_params_set(&o.pi, "mu", ind->mu_ind, "dem-validate", err))
+    return -1;
+  /* one sample every 0.0025 h/r: the same resolution for every rate and size */
+  double v = o.indent_rate * b->bed_top;
+  o.sample_interval = 0.0025 * 0.5 * ind->D * D_MEAN / v;
+  h->nruns++;
+  vh_log(h, "run %d: %s", h->nruns - 1, r->label);
+  double t0 = vh_now();
+  dem_scene_hooks hk = {progress, 30.0, NULL, 0.0, h};
+  /* The bed surface under the footprint first (dem_bed_surface: mean column top, docs/
+   * analysis.md). The scene stops at h/r measured from the first contact, which lies at most
+   * at the highest particle top of the footprint: ask it for the difference more, so that
+   * h/r_end is reached from this surface. */
+  int rc = DEM_OK;
+  {
+    dem_scene *s0 = dem_scene_restore(b->path, NULL, NULL, err);
+    if (!s0) rc = err->code;
+    else {
+      const dem_particles *p = dem_sim_particles(dem_scene_sim(s0));
+      dem_surface su;
+      rc = dem_bed_surface(p->n, p->x, p->radius, 0.0, 0.0, 0.5 * ind->D * D_MEAN, 0.0, 90.0,
+                           &su, err);
+      r->surface = su.z;
+      r->surface_sd = su.sd;
+      o.h_over_r = fmin(2.0, t->h_end + (su.z_max - su.z) / (0.5 * ind->D * D_MEAN));
+      dem_scene_free(s0);
+    }
+  }
+  dem_scene *sc = rc ? NULL : dem_scene_restore(b->path, &o, &hk, err);
+  if (!rc && !sc) rc = err->code;
+  if (!rc) {
+    dem_sim *s = dem_scene_sim(sc);
+    dem_sim_stats st0;
+    dem_sim_get_stats(s, &st0);
+    if (!rc) rc = dem_scene_indent(sc, err);
+    dem_sim_stats st;
+    dem_sim_get_stats(s, &st);
+    r->steps = st.steps - st0.steps;
+    r->max_overlap = st.max_overlap_frac;
+    dem_scene_info in;
+    dem_scene_get_info(sc, &in);
+    r->dt = in.dt;
+    if (!rc) rc = series_extract(h, r, dem_scene_series(sc), err);
+  }
+  dem_scene_free(sc);
+  r->wall_s = vh_now() - t0;
+  r->status = rc;
+  if (rc) {
+    snprintf(r->error, sizeof r->error, "%.40s: %.270s", dem_strerror(rc), err->msg);
+    vh_log(h, "run %d FAILED: %s", h->nruns - 1, r->error);
+    *err = (dem_err){0};
+    return h->nruns - 1;
+  }
+  stats(r, r->H, t->plateau_lo, t->plateau_hi, &r->sH);
+  stats(r, r->H, t->early_lo, t->early_hi, &r->sEarly);
+  stats(r, r->bin_p, t->plateau_lo, t->plateau_hi, &r->sp);
+  stats(r, r->bin_q, t->plateau_lo, t->plateau_hi, &r->sq);
+  stats(r, r->bin_phi, t->plateau_lo, t->plateau_hi, &r->sphi);
+  vh_log(h, "run %d: %zu samples to h/r %.3f, H plateau %.0f +- %.0f Pa (sd %.0f), bin p %.0f Pa, "
+         "%.0f s, %ld steps", h->nruns - 1, r->n, r->n ? r->hr[r->n - 1] : 0.0, r->sH.mean,
+         r->sH.se, r->sH.sd, r->sp.mean, r->wall_s, r->steps);
+  return h->nruns - 1;
+}
+
+int vh_greater(const vh *h, const dem_series_stats *a, const dem_series_stats *b,
+               dem_comparison *c) {
+  dem_err e = {0};
+  return dem_compare_means(a->mean, a->se, b->mean, b->se, h->level, DEM_TEST_GREATER, c, &e);
+}
+
+int vh_agree(const vh *h, const dem_series_stats *a, const dem_series_stats *b,
+             dem_comparison *c) {
+  dem_err e = {0};
+  return dem_compare_means(a->mean, a->se, b->mean, b->se, h->level, DEM_TEST_TWO_SIDED, c,
+                           &e);
+}

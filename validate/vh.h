@@ -1,0 +1,186 @@
+/* vh.h — the validation harness (dem-validate): ball-indentation runs, the thesis'
+ * operating-window conclusions as checks with criteria fixed before the run, and the report.
+ * Private to validate/. See docs/validation.md.
+ *
+ * Vocabulary
+ *   bed     a filled, settled, consolidated (10 kPa) and unloaded die, prepared once and
+ *           saved as a scene checkpoint (dem_scene_save); every indentation on it restores
+ *           the checkpoint (dem_scene_restore), so variants of the indenter start from the
+ *           identical bed.
+ *   run     one indentation of a bed to h/r_end with one indenter.
+ *   case    one thesis conclusion: a set of runs, statistics and a PASS/FAIL criterion.
+ *   tier    the scale of every case: quick (reduced geometry, CI) or full (thesis scale as
+ *           far as the budget allows); the geometry is in mean particle diameters d.
+ */
+#ifndef VH_H
+#define VH_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "dem/analysis.h"
+#include "dem/error.h"
+#include "dem/scene.h"
+
+#define VH_MAX_RUNS 96
+#define VH_MAX_BEDS 24
+#define VH_MAX_CHECKS 8
+#define VH_MAX_CASE_RUNS 12
+
+/* The scale of a tier (lengths in d, rates as gamma* = gamma_dot sqrt(d/g)). */
+typedef struct vh_tier {
+  const char *name;
+  double die;              /* d, die diameter */
+  double bed;              /* d, reference bed height */
+  double indenter;         /* d, reference indenter diameter */
+  double gamma_star;       /* reference dimensionless strain rate of every stage */
+  double stiffness_scale;  /* multiplies every stiffness of Tables 6.2/6.3 */
+  double dt_factor;        /* dt = dt_factor sqrt(m_min / k_max) */
+  double fill_fraction;    /* solids fraction of the random fill */
+  double h_end;            /* h/r at which an indentation stops */
+  double plateau_lo, plateau_hi; /* h/r window of the plateau statistics */
+  double early_lo, early_hi;     /* h/r window of the "early" hardness */
+  /* case 2 and 3 geometry */
+  int nbeds;               /* bed heights of case 2 */
+  double beds[4];          /* d */
+  double bed_indenter;     /* d, indenter of case 2 (13 d in the thesis) */
+  int nsizes;              /* indenter sizes of case 3 */
+  double sizes[6];         /* d */
+  double stable_from;      /* d, sizes >= this count as "large" in case 3 */
+  double wall_indenter;    /* d, the very large indenter of case 3 on the shallow bed */
+  int replicates;          /* reference beds with different seeds (>= 1) */
+  int cases_mask;          /* bit i: case i + 1 runs in this tier */
+} vh_tier;
+
+const vh_tier *vh_tier_find(const char *name);
+
+/* A bed: what a prepared bed depends on. */
+typedef struct vh_bed {
+  double bed;          /* d */
+  double die;          /* d */
+  unsigned long seed;
+  double mu;           /* inter-particle sliding friction */
+  double gamma;        /* J/m^2, inter-particle interface energy */
+  /* filled in when prepared */
+  int ready;
+  char path[512];      /* scene checkpoint */
+  double wall_s;       /* s, preparation wall time */
+  size_t n;            /* particles */
+  double phi, bed_top; /* -, m after unloading */
+  double dt;           /* s */
+} vh_bed;
+
+/* An indentation on a bed. */
+typedef struct vh_indent {
+  dem_indenter_shape shape;
+  double D;            /* d, diameter (cube: side) */
+  double gamma_star;   /* indentation rate */
+  double kn_scale;     /* multiplies the particle-indenter stiffness kn, kt */
+  double mu_ind;       /* particle-indenter sliding friction */
+  double dt_scale;     /* multiplies the bed's time step (1: the tier's dt_factor) */
+} vh_indent;
+
+/* The result of a run. Arrays hold the loading samples with h > 0 (from the bed surface). */
+typedef struct vh_run {
+  char label[128];
+  int bed;             /* index into the harness' beds */
+  vh_indent ind;
+  int status;          /* DEM_OK or the error */
+  char error[320];
+  double wall_s;
+  long steps;
+  double dt;           /* s */
+  double surface;      /* m, bed surface under the footprint (dem_bed_surface) */
+  double surface_sd;   /* m, roughness of the footprint */
+  double max_overlap;  /* largest overlap / radius seen at the samples */
+  size_t n;
+  double *hr, *H, *bin_p, *bin_q, *bin_phi, *base_p, *F; /* [n] */
+  double base_p0;      /* Pa, base stress at the first contact */
+  /* statistics over the plateau window (H; stresses if available) */
+  dem_series_stats sH, sp, sq, sphi;
+  int have_stress;
+  dem_series_stats sEarly; /* H over the early window */
+} vh_run;
+
+typedef enum { VH_PASS = 0, VH_FAIL = 1, VH_ERROR = 2, VH_NA = 3 } vh_status;
+const char *vh_status_name(vh_status s);
+
+/* One sub-criterion of a case. */
+typedef struct vh_check {
+  char what[200];      /* the criterion in words, fixed before the run */
+  char statistic[120]; /* the statistic, e.g. "z (one-sided, 0.05)" */
+  char ours[200];      /* our value(s) */
+  char thesis[160];    /* the thesis' value or statement */
+  vh_status status;
+} vh_check;
+
+typedef struct vh_case_result {
+  const char *name;
+  const char *title;
+  const char *source;    /* thesis sections / figures */
+  vh_status status;      /* FAIL if any check fails, ERROR if a run failed, NA if none */
+  int nchecks;
+  vh_check checks[VH_MAX_CHECKS];
+  int nruns;
+  int runs[VH_MAX_CASE_RUNS]; /* indices into the harness' runs */
+  double wall_s;         /* wall time spent on this case's new beds and runs */
+  char labels[VH_MAX_CASE_RUNS][40]; /* per run, for the figures */
+  double x[VH_MAX_CASE_RUNS];         /* the varied parameter (NAN: none) */
+  const char *xlabel;    /* its name and unit, for the trend figure (NULL: no trend) */
+  int logx;
+  char plots[4][96];     /* PNG files written for this case ("" if none) */
+  char note[400];
+} vh_case_result;
+
+typedef struct vh {
+  const vh_tier *tier;
+  char out[512];
+  char beds_dir[512];
+  int threads;
+  double level;          /* significance level of every test (0.05) */
+  int verbose;
+  int nbeds;
+  vh_bed beds[VH_MAX_BEDS];
+  int nruns;
+  vh_run runs[VH_MAX_RUNS];
+  double t0;             /* wall clock at the start */
+} vh;
+
+typedef struct vh_case {
+  const char *name;
+  const char *title;
+  const char *source;
+  int (*run)(vh *h, vh_case_result *r, dem_err *err);
+} vh_case;
+
+extern const vh_case vh_cases[];
+extern const int vh_ncases;
+
+double vh_now(void);
+void vh_log(const vh *h, const char *fmt, ...);
+
+/* The reference bed and indenter of the tier (replicate k >= 0 changes the seed). */
+vh_bed vh_bed_ref(const vh *h, int replicate);
+vh_indent vh_indent_ref(const vh *h);
+/* Index of the bed (prepared on first use), or -1 with err set. */
+int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err);
+/* Index of the run (run on first use; identical runs are shared between cases). A failed
+ * run is returned with status != DEM_OK (the case reports ERROR). -1 only on setup errors. */
+int vh_run_get(vh *h, const vh_bed *bed, const vh_indent *ind, dem_err *err);
+
+/* Tests on plateau means (independent runs: z-test on the combined standard error). */
+int vh_greater(const vh *h, const dem_series_stats *a, const dem_series_stats *b,
+               dem_comparison *c);
+int vh_agree(const vh *h, const dem_series_stats *a, const dem_series_stats *b,
+             dem_comparison *c);
+
+/* Report: the case table, figures, report.md, report.html and summary.json in h->out. */
+int vh_plot_runs(const vh *h, const char *png, const char *title, const int *runs, int nruns,
+                 const char *const *labels, int column, dem_err *err);
+int vh_plot_trend(const vh *h, const char *png, const char *title, const char *xlabel,
+                  const double *x, const int *runs, int nruns, int logx, dem_err *err);
+int vh_report_write(const vh *h, const vh_case_result *res, int nres, double wall_s,
+                    dem_err *err);
+int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_s, FILE *f);
+
+#endif
