@@ -1,6 +1,6 @@
 /* dem-bench: throughput of the 3-D engine on the peers' dense-bed scene.
  *
- *   dem-bench [--particles N] [--steps N] [--threads N] [--json] [--file CSV]
+ *   dem-bench [--particles N] [--steps N] [--threads N] [--json] [--file CSV] [--checksum]
  *
  * Scene (issue 5, identical to the LAMMPS / LIGGGHTS / Yade runs): the 20,000 settled
  * spheres of ../shared/bench/dense20k.csv (d = 1 mm, rho = 2500 kg/m^3) in a 0.03 x 0.03 m
@@ -9,6 +9,9 @@
  * friction mu = 0.3, dt = 1.5e-6 s, neighbour skin 0.1 mm.
  * --particles N: the file is tiled k x k in x and y (box k * 0.03 m) with k the smallest
  * integer giving at least N spheres, and the N lowest spheres (in z) are kept.
+ * --checksum: also print a 64-bit FNV-1a hash of the final positions, velocities and angular
+ * velocities in particle-id order (equal hashes: bit-identical results, e.g. before and
+ * after an optimisation).
  * The time is the engine's own loop timer (dem_sim_run, including its neighbour builds and
  * the first force evaluation, excluding reading the file and setting up).
  */
@@ -68,8 +71,26 @@ static sphere *read_csv(const char *path, size_t *n) {
   return s;
 }
 
+/* FNV-1a over the bytes of x, v, omega of each particle in id order. */
+static unsigned long long state_hash(const dem_particles *p) {
+  unsigned long long h = 1469598103934665603ull;
+  size_t *at = malloc((p->n ? p->n : 1) * sizeof *at);
+  if (!at) return 0;
+  for (size_t i = 0; i < p->n; i++) at[p->id[i] < p->n ? p->id[i] : 0] = i;
+  for (size_t k = 0; k < p->n; k++) {
+    const double *src[3] = {p->x + 3 * at[k], p->v + 3 * at[k], p->omega + 3 * at[k]};
+    for (int a = 0; a < 3; a++) {
+      const unsigned char *c = (const unsigned char *)src[a];
+      for (size_t b = 0; b < 3 * sizeof(double); b++) h = (h ^ c[b]) * 1099511628211ull;
+    }
+  }
+  free(at);
+  return h;
+}
+
 static void usage(FILE *f) {
   fprintf(f, "usage: dem-bench [--particles N] [--steps N] [--threads N] [--json] [--file CSV]\n"
+             "                 [--checksum]\n"
              "  the dense-bed throughput benchmark of issue 5 (default 20000 particles,\n"
              "  1000 steps, 1 thread); prints particle-steps per second\n");
 }
@@ -81,7 +102,7 @@ static int fail(const char *what, const dem_err *e) {
 
 int main(int argc, char **argv) {
   long nwant = 20000, steps = 1000;
-  int threads = 1, json = 0;
+  int threads = 1, json = 0, checksum = 0;
   const char *file = DEM_SHARED_DIR "/bench/dense20k.csv";
   for (int a = 1; a < argc; a++) {
     const char *s = argv[a];
@@ -98,6 +119,8 @@ int main(int argc, char **argv) {
       threads = (int)val;
     } else if (!strcmp(s, "--file") && a + 1 < argc) {
       file = argv[++a];
+    } else if (!strcmp(s, "--checksum")) {
+      checksum = 1;
     } else if (!strcmp(s, "--json")) {
       json = 1;
     } else if (!strcmp(s, "--version")) {
@@ -216,6 +239,11 @@ int main(int argc, char **argv) {
     json_object_set_new(o, "contacts_per_particle", json_real(cpp));
     json_object_set_new(o, "rebuilds", json_integer(st.rebuilds));
     json_object_set_new(o, "tangential", json_boolean(have_tangential));
+    if (checksum) {
+      char hx[32];
+      snprintf(hx, sizeof hx, "%016llx", state_hash(dem_sim_particles(sim)));
+      json_object_set_new(o, "checksum", json_string(hx));
+    }
     char *txt = json_dumps(o, JSON_COMPACT | JSON_REAL_PRECISION(6));
     if (txt) puts(txt);
     free(txt);
@@ -230,6 +258,7 @@ int main(int argc, char **argv) {
     printf("peak RSS %ld kB  engine memory %.1f MB\n", ru.ru_maxrss, st.bytes / 1048576.0);
     printf("cpu time %.3f s (all threads; %.4g particle-steps per cpu-second)\n", cpu,
            (double)n * (double)steps / cpu);
+    if (checksum) printf("state checksum %016llx\n", state_hash(dem_sim_particles(sim)));
     printf("%.4g particle-steps/s\n", pss);
   }
   dem_sim_free(sim);

@@ -10,6 +10,10 @@
 
 #define DEM_MAX_THREADS 64
 
+/* Per-pair constants of the batched Hertz(-Mindlin) kernel (force.c): 2 E*, eta_H(e),
+ * 8 G*, eta_t sqrt(4 G* / E*), mu, and a 0/1 factor that switches the spring off. */
+enum { DEM_BC_2ES, DEM_BC_ETA, DEM_BC_8G, DEM_BC_CT, DEM_BC_MU, DEM_BC_TANG, DEM_BATCH_NC };
+
 /* The contact model of one material pair, flattened for the force loop. */
 typedef struct dem_inter {
   int set;                  /* 1 once dem_sim_set_interaction was called */
@@ -19,12 +23,14 @@ typedef struct dem_inter {
   unsigned fl;              /* DEM_IF_* below, read once per contact by the force loop */
   double hz_ct;             /* DEM_IF_HZMINDLIN: eta_t sqrt(4 G* / E*), so that the tangential
                                damping eta_t sqrt(m* k_t) = hz_ct sqrt(m* S_n) (force.c) */
+  double bc[DEM_BATCH_NC];  /* DEM_IF_BATCH: the constants of the batched kernel (force.c) */
 } dem_inter;
 /* HERTZ: the law is `hertz`, evaluated inline (contact/hertz_kernel.h) instead of through
  * the table; HZMINDLIN: and the tangential spring is Mindlin, its stiffness and damping
- * formed from the Hertz terms. */
+ * formed from the Hertz terms; BATCH: Hertz with a Mindlin spring or none, no rolling
+ * resistance: the pair can go through the batched kernel (force.c). */
 enum { DEM_IF_INIT = 1u, DEM_IF_TANG = 2u, DEM_IF_ROLL = 4u, DEM_IF_HERTZ = 8u,
-       DEM_IF_HZMINDLIN = 16u };
+       DEM_IF_HZMINDLIN = 16u, DEM_IF_BATCH = 32u };
 
 typedef struct dem_wall {
   dem_wall_spec spec;       /* current geometry (p advances with v) */
@@ -87,6 +93,8 @@ struct dem_sim {
   dem_inter inter[DEM_ENGINE_MAX_MATERIALS][DEM_ENGINE_MAX_MATERIALS];
   int hoff;                      /* offset of the tangential spring in a history block */
   int nh;                        /* doubles per history block (0 until the first build) */
+  int pmat;                      /* the material of every particle, -1 if they differ (or
+                                    none); set at the start of each run */
   int need_state;                /* some law in use is adhesive or plastic: a pair apart
                                     with a live state word still needs the law */
 

@@ -55,6 +55,10 @@ static int check_ready(dem_sim *s, dem_err *err) {
         s->need_state = 1;
   int used[DEM_ENGINE_MAX_MATERIALS] = {0};
   for (size_t i = 0; i < s->p.n; i++) used[s->p.material[i]] = 1;
+  /* one particle material (particles are added and materials changed only between runs) */
+  s->pmat = s->p.n > 0 ? s->p.material[0] : -1;
+  for (int a = 0; a < s->nmat && s->pmat >= 0; a++)
+    if (used[a] && a != s->pmat) s->pmat = -1;
   for (int a = 0; a < s->nmat; a++) {
     if (!used[a]) continue;
     for (int b = 0; b < s->nmat; b++)
