@@ -171,16 +171,20 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
   double t0 = vh_now();
   dem_scene *sc = NULL;
   if (access(b->path, R_OK) == 0) {
-    /* A bed prepared by an earlier invocation with the same parameters (--beds DIR). */
+    /* A bed prepared by an earlier invocation with the same parameters (--beds DIR); one
+     * this build cannot read (another checkpoint version) or that is not unloaded is
+     * prepared anew. */
     sc = dem_scene_restore(b->path, NULL, &hk, err);
-    if (!sc) return -1;
-    if (dem_scene_get_stage(sc) < DEM_SCENE_STAGE_UNLOADED) {
+    if (sc && dem_scene_get_stage(sc) < DEM_SCENE_STAGE_UNLOADED) {
       dem_scene_free(sc);
-      dem_err_set(err, DEM_EINVAL, "dem-validate: %s is not an unloaded bed", b->path);
-      return -1;
+      sc = NULL;
+      dem_err_set(err, DEM_EINVAL, "%s is not an unloaded bed", b->path);
     }
-    vh_log(h, "bed %s: reused %s", name, b->path);
-  } else {
+    if (sc) vh_log(h, "bed %s: reused %s", name, b->path);
+    else vh_log(h, "bed %s: cannot reuse (%s): preparing it anew", name, err->msg);
+    *err = (dem_err){0};
+  }
+  if (!sc) {
     vh_log(h, "bed %s: preparing (fill, settle, consolidate to 10 kPa, unload)", name);
     sc = dem_scene_create(&c, &hk, err);
     int rc = sc ? DEM_OK : err->code;
