@@ -658,8 +658,8 @@ static int c_dt(vh *h, vh_case_result *r, dem_err *err) {
 const vh_case vh_cases[] = {
     {"plateau", "Hardness plateau and the dynamic-bin stress", "thesis 5.2, Figs 5.3-5.6, 5.19",
      c_plateau},
-    {"bed-height", "Bed height 13, 20, 30, 50 d", "thesis 5.2, Figs 5.12-5.14", c_bed},
-    {"indenter-size", "Indenter size 7-22 d", "thesis 5.2, Figs 5.6, 5.15-5.17", c_size},
+    {"bed-height", "Bed height (thesis 13-50 d)", "thesis 5.2, Figs 5.12-5.14", c_bed},
+    {"indenter-size", "Indenter size (thesis 7-22 d)", "thesis 5.2, Figs 5.6, 5.15-5.17", c_size},
     {"penetration-depth", "Minimum penetration depth", "thesis 5.2, Fig 5.19", c_depth},
     {"indenter-stiffness", "Indenter stiffness", "thesis 6.2.1, Fig 6.1", c_stiff},
     {"indenter-shape", "Indenter shape: sphere, flat cylinder, cube",
