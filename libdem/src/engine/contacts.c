@@ -121,17 +121,7 @@ static int pairs(const dem_sim *s, dem_sim_contact **buf, size_t *cap, size_t *n
       double kt = 0.0, ct = 0.0;
       if (fl & DEM_IF_HERTZ) {
         if (!(alpha > 0.0)) continue;
-        dem_hertz_terms ht;
-        dem_hertz_eval(in->normal.c, g.R, g.m, alpha, -vn, &ht);
-        out.f_el = ht.f_el;
-        out.f_damp = ht.f_damp;
-        out.f = ht.f_el + ht.f_damp;
-        out.k = ht.k;
-        out.f_adh = 0.0;
-        out.alpha_t = alpha;
-        out.contact = 1;
-        kt = 8.0 * in->tang.G * ht.sra;
-        ct = in->hz_ct * ht.smk;
+        dem_engine_hertz_normal(in, &g, alpha, vn, &out, &kt, &ct);
       } else {
         memcpy(hcopy, h, (size_t)nh * sizeof *hcopy);
         if ((fl & DEM_IF_INIT) && hcopy[0] == 0.0) dem_contact_init(&in->normal, &g, hcopy, NULL);

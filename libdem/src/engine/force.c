@@ -220,17 +220,7 @@ static void pair_forces_generic(dem_sim *s, dem_tdata *td) {
           xi[0] = xi[1] = xi[2] = 0.0;
           continue;
         }
-        dem_hertz_terms ht;
-        dem_hertz_eval(in->normal.c, g.R, g.m, alpha, -vn, &ht);
-        out.f_el = ht.f_el;
-        out.f_damp = ht.f_damp;
-        out.f = ht.f_el + ht.f_damp;
-        out.k = ht.k;
-        out.f_adh = 0.0;
-        out.alpha_t = alpha;
-        out.contact = 1;
-        kt = 8.0 * in->tang.G * ht.sra; /* Mindlin 3.25 at alpha_t = alpha */
-        ct = in->hz_ct * ht.smk;
+        dem_engine_hertz_normal(in, &g, alpha, vn, &out, &kt, &ct);
       } else {
         generic_law(in, &g, h, alpha, -vn, &out);
       }

@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "dem/engine.h"
+#include "../contact/hertz_kernel.h"
 
 #define DEM_MAX_THREADS 64
 
@@ -174,5 +175,25 @@ static inline const dem_inter *dem_engine_inter(const dem_sim *s, int a, int b) 
 }
 
 size_t dem_engine_bytes(const dem_sim *s);
+
+/* The inline Hertz(-Mindlin) normal force of a pair or wall contact (thesis 3.14 with the
+ * restitution damping; Mindlin 3.25 at alpha_t = alpha): one definition for the force loop
+ * (force.c) and the read-only contact export (contacts.c). kt, ct: tangential stiffness
+ * (N/m) and damping (N s/m) of the contact. */
+static inline void dem_engine_hertz_normal(const dem_inter *in, const dem_geom *g, double alpha,
+                                           double vn, dem_normal *out, double *kt,
+                                           double *ct) {
+  dem_hertz_terms ht;
+  dem_hertz_eval(in->normal.c, g->R, g->m, alpha, -vn, &ht);
+  out->f_el = ht.f_el;
+  out->f_damp = ht.f_damp;
+  out->f = ht.f_el + ht.f_damp;
+  out->k = ht.k;
+  out->f_adh = 0.0;
+  out->alpha_t = alpha;
+  out->contact = 1;
+  *kt = 8.0 * in->tang.G * ht.sra;
+  *ct = in->hz_ct * ht.smk;
+}
 
 #endif
