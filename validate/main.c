@@ -170,6 +170,7 @@ int main(int argc, char **argv) {
   }
   h->tier = t;
   h->threads = (int)threads;
+  cli_warn_contention(prog, h->threads);
   h->level = level;
   h->verbose = verbose;
   h->t0 = vh_now();

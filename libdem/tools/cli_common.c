@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #ifndef DEM_VERSION
 #define DEM_VERSION "unknown"
@@ -285,4 +286,17 @@ int cli_no_operands(int argc, char *const *argv, dem_err *err) {
   if (optind < argc)
     return dem_err_set(err, DEM_EINVAL, "unexpected argument '%s'", argv[optind]);
   return DEM_OK;
+}
+
+int cli_warn_contention(const char *prog, int threads) {
+  double load[1];
+  const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+  if (threads < 2 || cores < 1 || getloadavg(load, 1) != 1) return 0;
+  if (load[0] + threads <= (double)cores + 0.5) return 0;
+  fprintf(stderr,
+          "%s: warning: %d threads on %ld cores with a load average of %.1f: the threads will "
+          "wait on one another (OpenMP barriers every step) and the run may be many times "
+          "slower; use --threads 1 or run when the machine is free\n",
+          prog, threads, cores, load[0]);
+  return 1;
 }

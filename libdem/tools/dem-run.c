@@ -297,6 +297,7 @@ int main(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   if (threads > 0) c.threads = threads;
+  cli_warn_contention(prog, c.threads);
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "%s: cannot create %s: %s\n", prog, dir, strerror(errno));
     return CLI_EXIT_RUN;
