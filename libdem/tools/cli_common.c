@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #ifndef DEM_VERSION
@@ -288,15 +289,34 @@ int cli_no_operands(int argc, char *const *argv, dem_err *err) {
   return DEM_OK;
 }
 
+/* Other runnable threads right now: the fourth field of /proc/loadavg ("running/total")
+ * counts this process too. The least of a few samples 20 ms apart, so that a short-lived
+ * process is not counted; -1 where /proc is missing. (The load average itself lags by a
+ * minute and would warn after a job that has just ended.) */
+static int other_runnable(void) {
+  int least = -1;
+  for (int k = 0; k < 5; k++) {
+    FILE *f = fopen("/proc/loadavg", "r");
+    int run = 0, tot = 0;
+    if (!f) return -1;
+    int got = fscanf(f, "%*f %*f %*f %d/%d", &run, &tot);
+    fclose(f);
+    if (got != 2) return -1;
+    if (least < 0 || run - 1 < least) least = run - 1;
+    if (k < 4) nanosleep(&(struct timespec){0, 20000000L}, NULL);
+  }
+  return least < 0 ? 0 : least;
+}
+
 int cli_warn_contention(const char *prog, int threads) {
-  double load[1];
   const long cores = sysconf(_SC_NPROCESSORS_ONLN);
-  if (threads < 2 || cores < 1 || getloadavg(load, 1) != 1) return 0;
-  if (load[0] + threads <= (double)cores + 0.5) return 0;
+  if (threads < 2 || cores < 1) return 0;
+  const int others = other_runnable();
+  if (others < 0 || others + threads <= cores) return 0;
   fprintf(stderr,
-          "%s: warning: %d threads on %ld cores with a load average of %.1f: the threads will "
-          "wait on one another (OpenMP barriers every step) and the run may be many times "
+          "%s: warning: %d threads on %ld cores with %d other runnable thread%s: the threads "
+          "will wait on one another (OpenMP barriers every step) and the run may be many times "
           "slower; use --threads 1 or run when the machine is free\n",
-          prog, threads, cores, load[0]);
+          prog, threads, cores, others, others == 1 ? "" : "s");
   return 1;
 }

@@ -60,9 +60,10 @@ const dem_law *cli_find_law(const char *id, dem_err *err);
 /* Every law with its coefficients, units, ranges and defaults. */
 void cli_list_laws(FILE *out);
 void cli_print_version(const char *prog);
-/* Warns on stderr when `threads` OpenMP threads would share the cores with other running work
- * (1-minute load average + threads > online cores): libgomp's spinning barriers, several per
- * time step, then slow a run by 5-40x (measured in CI). Returns 1 if it warned. */
+/* Warns on stderr when `threads` OpenMP threads would share the cores with other work (other
+ * runnable threads now, from /proc/loadavg, + threads > online cores): libgomp's spinning
+ * barriers, several per time step, then slow a run by 5-40x (measured in CI). Returns 1 if it
+ * warned. */
 int cli_warn_contention(const char *prog, int threads);
 /* "prog: message" on stderr. */
 void cli_error(const char *prog, const dem_err *err);
