@@ -26,7 +26,7 @@ static void usage(FILE *f) {
           "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
           "          [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]\n"
           "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
-          "             same geometry, all eleven cases, ~1 h), full (thesis scale, all\n"
+          "             same geometry, all eleven cases, ~30 min), full (thesis scale, all\n"
           "             eleven cases, hours) or smoke (tests only)\n"
           "  --case     run only these cases (see --list), at the tier's scale\n"
           "  --out      report folder (default validation-<tier>)\n"
