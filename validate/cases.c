@@ -603,7 +603,7 @@ static int c_rate(vh *h, vh_case_result *r, dem_err *err) {
   r->logx = 1;
   int idx[6];
   for (int k = 0; k < 6; k++) {
-    vh_bed b = vh_bed_ref(h, 0);
+    vh_bed b = vh_bed_rate(h);
     vh_indent in = vh_indent_ref(h);
     in.gamma_star = rates[k];
     char lab[40];
@@ -639,7 +639,7 @@ static int c_dt(vh *h, vh_case_result *r, dem_err *err) {
   char nm[3][24];
   const char *names[3];
   for (int k = 0; k < 3; k++) {
-    vh_bed b = vh_bed_ref(h, 0);
+    vh_bed b = vh_bed_rate(h);
     vh_indent in = vh_indent_ref(h);
     in.gamma_star = 2.3;
     in.dt_scale = zs[k];

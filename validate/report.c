@@ -285,11 +285,13 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
              "cases, criteria and settings).",
          when, mach, h->threads, wall_s, wall_s / 60, npass, nfail, nother, t->name);
   d_para(&d, "Scene: chapter 6/7 materials (pasha-simplified, thesis Tables 6.1-6.3) with "
-             "every stiffness scaled by %g, die %g d, reference bed %g d, reference sphere "
+             "every stiffness scaled by %g (by %g on the beds of the high-rate cases 10 and "
+             "11), die %g d, reference bed %g d, reference sphere "
              "%g d, pre-consolidation 10 kPa, all rates gamma* = %g (gamma_dot = v / h_bed) "
              "unless varied, dt = %g sqrt(m_min / k_max). Plateau window h/r %.2f-%.2f; "
              "early window %.2f-%.2f; significance level %.2f.",
-         t->stiffness_scale, t->die, t->bed, t->indenter, t->gamma_star, t->dt_factor,
+         t->stiffness_scale, t->rate_stiffness_scale, t->die, t->bed, t->indenter,
+         t->gamma_star, t->dt_factor,
          t->plateau_lo, t->plateau_hi, t->early_lo, t->early_hi, h->level);
 
   d_head(&d, 2, "Summary");
@@ -308,19 +310,19 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
   d_head(&d, 2, "Beds (each prepared once, reused by every indentation on it)");
   d_table_begin(&d);
   const char *bh[] = {"bed [d]", "die [d]", "seed", "mu", "Gamma [J/m^2]", "particles",
-                      "solids fraction", "dt [s]", "preparation [s]"};
-  d_row(&d, 1, 9, bh);
+                      "solids fraction", "dt [s]", "preparation [s]", "stiffness scale"};
+  d_row(&d, 1, 10, bh);
   for (int i = 0; i < h->nbeds; i++) {
     const vh_bed *b = &h->beds[i];
-    char c[9][48];
+    char c[10][48];
     snprintf(c[0], 48, "%g", b->bed), snprintf(c[1], 48, "%g", b->die);
     snprintf(c[2], 48, "%lu", b->seed), snprintf(c[3], 48, "%g", b->mu);
     snprintf(c[4], 48, "%g", b->gamma), snprintf(c[5], 48, "%zu", b->n);
     snprintf(c[6], 48, "%.3f", b->phi), snprintf(c[7], 48, "%.3g", b->dt);
-    snprintf(c[8], 48, "%.0f", b->wall_s);
-    const char *cells[9];
-    for (int k = 0; k < 9; k++) cells[k] = c[k];
-    d_row(&d, 0, 9, cells);
+    snprintf(c[8], 48, "%.0f", b->wall_s), snprintf(c[9], 48, "%g", b->kscale);
+    const char *cells[10];
+    for (int k = 0; k < 10; k++) cells[k] = c[k];
+    d_row(&d, 0, 10, cells);
   }
   d_table_end(&d);
 
@@ -388,18 +390,19 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
   json_object_set_new(root, "threads", json_integer(h->threads));
   json_object_set_new(root, "level", jnum(h->level));
   json_object_set_new(root, "settings",
-                      json_pack("{s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "die_d", t->die, "bed_d",
+                      json_pack("{s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "die_d", t->die, "bed_d",
                                 t->bed, "indenter_d", t->indenter, "gamma_star", t->gamma_star,
-                                "stiffness_scale", t->stiffness_scale, "dt_factor",
+                                "stiffness_scale", t->stiffness_scale, "rate_stiffness_scale", t->rate_stiffness_scale, "dt_factor",
                                 t->dt_factor, "plateau_h_over_r", t->plateau_lo,
                                 t->plateau_hi));
   for (int i = 0; i < h->nbeds; i++) {
     const vh_bed *b = &h->beds[i];
     json_array_append_new(
-        beds, json_pack("{s:f,s:f,s:I,s:f,s:f,s:I,s:o,s:o,s:o}", "bed_d", b->bed, "die_d",
+        beds, json_pack("{s:f,s:f,s:I,s:f,s:f,s:f,s:I,s:o,s:o,s:o}", "bed_d", b->bed, "die_d",
                         b->die, "seed", (json_int_t)b->seed, "mu", b->mu, "gamma", b->gamma,
-                        "particles", (json_int_t)b->n, "solids_fraction", jnum(b->phi), "dt",
-                        jnum(b->dt), "wall_s", jnum(b->wall_s)));
+                        "stiffness_scale", b->kscale, "particles", (json_int_t)b->n,
+                        "solids_fraction", jnum(b->phi), "dt", jnum(b->dt), "wall_s",
+                        jnum(b->wall_s)));
   }
   for (int i = 0; i < nres; i++) {
     const vh_case_result *r = &res[i];

@@ -35,6 +35,7 @@ typedef struct vh_tier {
   double indenter;         /* d, reference indenter diameter */
   double gamma_star;       /* reference dimensionless strain rate of every stage */
   double stiffness_scale;  /* multiplies every stiffness of Tables 6.2/6.3 */
+  double rate_stiffness_scale; /* the same for the beds of cases 10 and 11 (high rates) */
   double dt_factor;        /* dt = dt_factor sqrt(m_min / k_max) */
   double fill_fraction;    /* solids fraction of the random fill */
   double h_end;            /* h/r at which an indentation stops */
@@ -61,6 +62,7 @@ typedef struct vh_bed {
   unsigned long seed;
   double mu;           /* inter-particle sliding friction */
   double gamma;        /* J/m^2, inter-particle interface energy */
+  double kscale;       /* multiplies every stiffness of Tables 6.2/6.3 (stiffness_scale) */
   /* filled in when prepared */
   int ready;
   char path[512];      /* scene checkpoint */
@@ -161,6 +163,8 @@ void vh_log(const vh *h, const char *fmt, ...);
 
 /* The reference bed and indenter of the tier (replicate k >= 0 changes the seed). */
 vh_bed vh_bed_ref(const vh *h, int replicate);
+/* The reference bed at the tier's stiffness scale for high rates (cases 10, 11). */
+vh_bed vh_bed_rate(const vh *h);
 vh_indent vh_indent_ref(const vh *h);
 /* Index of the bed (prepared on first use), or -1 with err set. */
 int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err);
