@@ -1,7 +1,9 @@
 /* dem-validate — runs the thesis' ball-indentation conclusions as checks (docs/validation.md).
  *
  *   dem-validate [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
- *                [--threads N] [--level A] [--json] [--list] [--quiet]
+ *                [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]
+ *                [--plan] [--no-run-cache]
+ *   mpirun -n R dem-validate ...   beds and runs distributed over R ranks (validate/dist.c)
  *
  * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
  * one line per case (PASS/FAIL with the numbers), or with --json the summary object on
@@ -14,7 +16,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <math.h>
 #include <sys/stat.h>
+
+#ifdef VH_HAVE_MPI
+#include <mpi.h>
+#endif
 
 #include "cli_common.h"
 #include "vh.h"
@@ -25,6 +32,8 @@ static void usage(FILE *f) {
   fprintf(f,
           "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
           "          [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]\n"
+          "          [--plan] [--no-run-cache]\n"
+          "       mpirun -n R %s ...   (independent beds and runs on R ranks)\n"
           "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
           "             same geometry, all eleven cases, ~30 min), full (thesis scale, all\n"
           "             eleven cases, hours) or smoke (tests only)\n"
@@ -37,8 +46,12 @@ static void usage(FILE *f) {
           "  --list     name the cases and exit\n"
           "  --quiet    no progress lines (stage, simulated time, ETA every 30 s) on stderr\n"
           "  --baseline FILE  a summary.json of an earlier run: exit 4 if a criterion that\n"
-          "             passed there fails now (regression check for CI)\n",
-          prog);
+          "             passed there fails now (regression check for CI)\n"
+          "  --plan     list the beds and runs the cases need, which of them are already in\n"
+          "             the --beds folder, and an estimate of the rest; compute nothing\n"
+          "  --no-run-cache  do not reuse runs kept in the --beds folder (they are kept\n"
+          "             there after every run, keyed by bed, indenter and this executable)\n",
+          prog, prog);
 }
 
 /* Regressions against a baseline summary.json (--baseline): every criterion that passed
@@ -95,6 +108,78 @@ static int selected(const char *list, const char *name) {
   return 0;
 }
 
+typedef struct loop_ctx {
+  const char *cases;     /* --case list or NULL */
+  vh_case_result *res;
+  int nres;
+  int json;
+  int any_fail, any_err;
+} loop_ctx;
+
+/* The selected cases in order. With h->plan set they only list their beds and runs (dist.c):
+ * nothing is printed and no report is written. */
+static int run_cases(vh *h, void *user) {
+  loop_ctx *L = user;
+  const vh_tier *t = h->tier;
+  FILE *o = L->json ? stderr : stdout;
+  for (int i = 0; i < vh_ncases; i++) {
+    int sel = selected(L->cases, vh_cases[i].name);
+    if (sel == 0 || (sel < 0 && !(t->cases_mask & (1 << i)))) continue;
+    vh_case_result *r = &L->res[L->nres++];
+    memset(r, 0, sizeof *r);
+    r->name = vh_cases[i].name;
+    r->title = vh_cases[i].title;
+    r->source = vh_cases[i].source;
+    if (!h->plan) vh_log(h, "case %s: %s", r->name, r->title);
+    double t0 = vh_now();
+    int nb0 = h->nbeds, nr0 = h->nruns;
+    dem_err e = {0};
+    if (vh_cases[i].run(h, r, &e)) {
+      r->status = VH_ERROR;
+      snprintf(r->note, sizeof r->note, "setup error: %.380s", e.msg);
+    }
+    r->wall_s = vh_now() - t0;
+    if (h->plan) continue;
+    /* the cost of what this case was first to need, when it was made (cached or not) */
+    r->cost_s = 0;
+    for (int k = nb0; k < h->nbeds; k++)
+      r->cost_s += isfinite(h->beds[k].prep_s) ? h->beds[k].prep_s : h->beds[k].wall_s;
+    for (int k = nr0; k < h->nruns; k++) r->cost_s += h->runs[k].wall_s;
+    for (int k = 0; k < r->nchecks; k++)
+      fprintf(o, "%-20s %-5s %s: %s (thesis: %s)\n", r->name,
+              vh_status_name(r->checks[k].status), r->checks[k].what,
+              r->checks[k].ours[0] ? r->checks[k].ours : "-", r->checks[k].thesis);
+    fprintf(o, "%-20s %s (%.0f s; made in %.0f s)\n", r->name, vh_status_name(r->status),
+            r->wall_s, r->cost_s);
+    fflush(stdout);
+    if (r->status == VH_FAIL) L->any_fail = 1;
+    if (r->status == VH_ERROR) L->any_err = 1;
+    /* the report so far after every case: a long run interrupted later keeps its results */
+    dem_err e2 = {0};
+    if (vh_report_write(h, L->res, L->nres, vh_now() - h->t0, &e2)) cli_error(prog, &e2);
+  }
+  return DEM_OK;
+}
+
+static int finish(vh *h, vh_case_result *res, int code) {
+  vh_reset(h);
+  free(res);
+  free(h);
+#ifdef VH_HAVE_MPI
+  int inited = 0;
+  MPI_Initialized(&inited);
+  if (inited) MPI_Finalize();
+#endif
+  return code;
+}
+
+/* MPI only when started by a launcher (mpirun sets these): a plain invocation stays a plain
+ * process, even in a build with MPI. */
+static int launched_by_mpi(void) {
+  return getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMIX_RANK") || getenv("PMI_RANK") ||
+         getenv("PMI_SIZE");
+}
+
 int main(int argc, char **argv) {
   static struct option opts[] = {{"tier", required_argument, 0, 't'},
                                  {"case", required_argument, 0, 'c'},
@@ -107,12 +192,14 @@ int main(int argc, char **argv) {
                                  {"verbose", no_argument, 0, 'v'},
                                  {"quiet", no_argument, 0, 'q'},
                                  {"baseline", required_argument, 0, 'B'},
+                                 {"plan", no_argument, 0, 'P'},
+                                 {"no-run-cache", no_argument, 0, 'N'},
                                  {"help", no_argument, 0, 'h'},
                                  {"version", no_argument, 0, 'V'},
                                  {0, 0, 0, 0}};
   const char *tier = "quick", *cases = NULL, *out = NULL, *beds = NULL, *baseline = NULL;
   double threads = 2, level = 0.05;
-  int json = 0, list = 0, verbose = 0, o;
+  int json = 0, list = 0, verbose = 0, plan_only = 0, no_cache = 0, o;
   dem_err err = {0};
   opterr = 0;
   while ((o = getopt_long(argc, argv, ":", opts, NULL)) != -1) {
@@ -132,6 +219,8 @@ int main(int argc, char **argv) {
     case 'v': verbose = 1; break;
     case 'q': verbose = -1; break;
     case 'B': baseline = optarg; break;
+    case 'P': plan_only = 1; break;
+    case 'N': no_cache = 1; break;
     case 'h': usage(stdout); return CLI_EXIT_OK;
     case 'V': cli_print_version(prog); return CLI_EXIT_OK;
     default: cli_getopt_error(argv, &err); goto usage_error;
@@ -170,6 +259,27 @@ int main(int argc, char **argv) {
   }
   h->tier = t;
   h->threads = (int)threads;
+  h->nranks = 1;
+  h->use_cache = !no_cache;
+  if (launched_by_mpi()) {
+#ifdef VH_HAVE_MPI
+    int provided;
+    if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+      fprintf(stderr, "%s: MPI_Init_thread failed\n", prog);
+      return CLI_EXIT_RUN;
+    }
+    MPI_Comm_rank(MPI_COMM_WORLD, &h->rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &h->nranks);
+    if (h->nranks > 1 && no_cache) {
+      fprintf(stderr, "%s: --no-run-cache: the ranks hand their runs over through the run "
+                      "cache; not allowed with %d MPI ranks\n", prog, h->nranks);
+      return finish(h, res, CLI_EXIT_USAGE);
+    }
+#else
+    fprintf(stderr, "%s: started by an MPI launcher, but this build has no MPI (Open MPI's "
+                    "libopenmpi-dev was not found by CMake): running as one process\n", prog);
+#endif
+  }
   cli_warn_contention(prog, h->threads);
   h->level = level;
   h->verbose = verbose;
@@ -185,35 +295,20 @@ int main(int argc, char **argv) {
     return CLI_EXIT_RUN;
   }
 
-  int nres = 0, any_fail = 0, any_err = 0;
-  for (int i = 0; i < vh_ncases; i++) {
-    int sel = selected(cases, vh_cases[i].name);
-    if (sel == 0 || (sel < 0 && !(t->cases_mask & (1 << i)))) continue;
-    vh_case_result *r = &res[nres++];
-    r->name = vh_cases[i].name;
-    r->title = vh_cases[i].title;
-    r->source = vh_cases[i].source;
-    vh_log(h, "case %s: %s", r->name, r->title);
-    double t0 = vh_now();
-    dem_err e = {0};
-    if (vh_cases[i].run(h, r, &e)) {
-      r->status = VH_ERROR;
-      snprintf(r->note, sizeof r->note, "setup error: %.380s", e.msg);
+  loop_ctx L = {cases, res, 0, json, 0, 0};
+  if (plan_only || h->nranks > 1) {
+    /* list every bed and run, then (MPI) compute them on all ranks into beds_dir */
+    if (vh_distribute(h, run_cases, &L, plan_only, &err)) {
+      cli_error(prog, &err);
+      return finish(h, res, CLI_EXIT_RUN);
     }
-    r->wall_s = vh_now() - t0;
-    for (int k = 0; k < r->nchecks; k++)
-      fprintf(json ? stderr : stdout, "%-20s %-5s %s: %s (thesis: %s)\n", r->name,
-              vh_status_name(r->checks[k].status), r->checks[k].what,
-              r->checks[k].ours[0] ? r->checks[k].ours : "-", r->checks[k].thesis);
-    fprintf(json ? stderr : stdout, "%-20s %s (%.0f s)\n", r->name, vh_status_name(r->status),
-            r->wall_s);
-    fflush(stdout);
-    if (r->status == VH_FAIL) any_fail = 1;
-    if (r->status == VH_ERROR) any_err = 1;
-    /* the report so far after every case: a long run interrupted later keeps its results */
-    dem_err e2 = {0};
-    if (vh_report_write(h, res, nres, vh_now() - h->t0, &e2)) cli_error(prog, &e2);
+    memset(res, 0, (size_t)vh_ncases * sizeof *res);
+    L.nres = 0;
+    if (plan_only || h->rank != 0) return finish(h, res, CLI_EXIT_OK);
+    vh_log(h, "rank 0: every bed and run is computed; evaluating the cases");
   }
+  run_cases(h, &L);
+  int nres = L.nres, any_fail = L.any_fail, any_err = L.any_err;
   double wall = vh_now() - h->t0;
   if (vh_report_write(h, res, nres, wall, &err)) {
     cli_error(prog, &err);
@@ -228,14 +323,7 @@ int main(int argc, char **argv) {
     cli_error(prog, &err);
     any_err = 1;
   }
-  for (int i = 0; i < h->nruns; i++) {
-    vh_run *u = &h->runs[i];
-    free(u->hr), free(u->H), free(u->bin_p), free(u->bin_q), free(u->bin_phi);
-    free(u->base_p), free(u->F);
-  }
-  free(res);
-  free(h);
-  return any_err ? CLI_EXIT_RUN : nreg > 0 ? 4 : any_fail ? 3 : CLI_EXIT_OK;
+  return finish(h, res, any_err ? CLI_EXIT_RUN : nreg > 0 ? 4 : any_fail ? 3 : CLI_EXIT_OK);
 
 usage_error:
   cli_error(prog, &err);

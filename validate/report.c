@@ -279,11 +279,18 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
     else if (res[i].status == VH_FAIL) nfail++;
     else nother++;
   }
+  double cost = 0;
+  int ncached = 0;
+  for (int i = 0; i < nres; i++) cost += res[i].cost_s;
+  for (int i = 0; i < h->nruns; i++) ncached += h->runs[i].cached;
   d_head(&d, 1, "Ball-indentation validation report (tier %s)", t->name);
-  d_para(&d, "%s on %s, %d threads; wall time %.0f s (%.1f min). Cases: %d PASS, %d FAIL, %d "
+  d_para(&d, "%s on %s, %d MPI rank(s) x %d threads; wall time %.0f s (%.1f min). The beds "
+             "and runs took %.0f s (%.1f min) when they were made (%d of %d runs from the "
+             "run cache). Cases: %d PASS, %d FAIL, %d "
              "other. Produced by `dem-validate --tier %s` (docs/validation.md explains the "
              "cases, criteria and settings).",
-         when, mach, h->threads, wall_s, wall_s / 60, npass, nfail, nother, t->name);
+         when, mach, h->nranks, h->threads, wall_s, wall_s / 60, cost, cost / 60, ncached,
+         h->nruns, npass, nfail, nother, t->name);
   d_para(&d, "Scene: chapter 6/7 materials (pasha-simplified, thesis Tables 6.1-6.3) with "
              "every stiffness scaled by %g (by %g on the beds of the high-rate cases 10 and "
              "11), die %g d, reference bed %g d, reference sphere "
@@ -319,7 +326,10 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
     snprintf(c[2], 48, "%lu", b->seed), snprintf(c[3], 48, "%g", b->mu);
     snprintf(c[4], 48, "%g", b->gamma), snprintf(c[5], 48, "%zu", b->n);
     snprintf(c[6], 48, "%.3f", b->phi), snprintf(c[7], 48, "%.3g", b->dt);
-    snprintf(c[8], 48, "%.0f", b->wall_s), snprintf(c[9], 48, "%g", b->kscale);
+    if (isfinite(b->prep_s) && b->wall_s < 0.5 * b->prep_s)
+      snprintf(c[8], 48, "%.0f (earlier)", b->prep_s);
+    else snprintf(c[8], 48, "%.0f", b->wall_s);
+    snprintf(c[9], 48, "%g", b->kscale);
     const char *cells[10];
     for (int k = 0; k < 10; k++) cells[k] = c[k];
     d_row(&d, 0, 10, cells);
@@ -329,8 +339,10 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
   for (int i = 0; i < nres; i++) {
     const vh_case_result *r = &res[i];
     d_head(&d, 2, "%d. %s: %s", i + 1, r->title, vh_status_name(r->status));
-    d_para(&d, "Case `%s`, %s. Wall time of its new beds and runs: %.0f s.%s%s", r->name,
-           r->source, r->wall_s, r->note[0] ? " " : "", r->note);
+    d_para(&d, "Case `%s`, %s. Wall time of its new beds and runs in this invocation: %.0f "
+               "s; the same beds and runs took %.0f s when they were made (cached ones "
+               "included).%s%s", r->name, r->source, r->wall_s, r->cost_s,
+           r->note[0] ? " " : "", r->note);
     for (int k = 0; k < 4; k++)
       if (r->plots[k][0]) d_img(&d, r->plots[k], r->plots[k]);
     d_table_begin(&d);
@@ -348,7 +360,7 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
       fmt_stats(c[5], 96, &u->sphi, 1.0);
       snprintf(c[6], 96, "%.2f", u->surface_sd / 1e-3);
       snprintf(c[7], 96, "%ld", u->steps);
-      snprintf(c[8], 96, "%.0f", u->wall_s);
+      snprintf(c[8], 96, "%.0f%s", u->wall_s, u->cached ? " (cached)" : "");
       snprintf(c[9], 96, "%.95s", u->status ? u->error : "ok");
       const char *cells[10];
       for (int j = 0; j < 10; j++) cells[j] = c[j];
@@ -388,6 +400,10 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
   json_object_set_new(root, "tier", json_string(t->name));
   json_object_set_new(root, "wall_s", jnum(wall_s));
   json_object_set_new(root, "threads", json_integer(h->threads));
+  json_object_set_new(root, "ranks", json_integer(h->nranks));
+  double cost = 0;
+  for (int i = 0; i < nres; i++) cost += res[i].cost_s;
+  json_object_set_new(root, "cost_s", jnum(cost));
   json_object_set_new(root, "level", jnum(h->level));
   json_object_set_new(root, "settings",
                       json_pack("{s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "die_d", t->die, "bed_d",
@@ -403,6 +419,8 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
                         "stiffness_scale", b->kscale, "particles", (json_int_t)b->n,
                         "solids_fraction", jnum(b->phi), "dt", jnum(b->dt), "wall_s",
                         jnum(b->wall_s)));
+    json_object_set_new(json_array_get(beds, json_array_size(beds) - 1), "prep_s",
+                        jnum(b->prep_s));
   }
   for (int i = 0; i < nres; i++) {
     const vh_case_result *r = &res[i];
@@ -415,6 +433,7 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
     json_object_set_new(c, "ours", json_string(p ? p->ours : ""));
     json_object_set_new(c, "thesis", json_string(p ? p->thesis : ""));
     json_object_set_new(c, "wall_s", jnum(r->wall_s));
+    json_object_set_new(c, "cost_s", jnum(r->cost_s));
     for (int k = 0; k < r->nchecks; k++) {
       const vh_check *q = &r->checks[k];
       json_array_append_new(checks, json_pack("{s:s,s:s,s:s,s:s,s:s}", "criterion", q->what,
@@ -430,6 +449,8 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
                             "bin_q", jstats(&u->sq), "bin_phi", jstats(&u->sphi), "wall_s",
                             jnum(u->wall_s), "steps", (json_int_t)u->steps, "dt", jnum(u->dt),
                             "samples", (json_int_t)u->n);
+      json_object_set_new(j, "cached", json_boolean(u->cached));
+      json_object_set_new(j, "threads", json_integer(u->threads));
       json_array_append_new(runs, j);
     }
     json_object_set_new(c, "checks", checks);

@@ -73,7 +73,8 @@ double vh_now(void) {
 void vh_log(const vh *h, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  fprintf(stderr, "[%6.0f s] ", vh_now() - h->t0);
+  if (h->nranks > 1) fprintf(stderr, "[rank %d %6.0f s] ", h->rank, vh_now() - h->t0);
+  else fprintf(stderr, "[%6.0f s] ", vh_now() - h->t0);
   vfprintf(stderr, fmt, ap);
   fputc('\n', stderr);
   fflush(stderr);
@@ -179,6 +180,11 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
   snprintf(b->path, sizeof b->path, "%.300s/%.200s.h5", h->beds_dir, name);
   dem_scene_config c;
   if (bed_config(h, b, &c, err)) return -1;
+  if (h->plan) { /* listed, not prepared (dist.c) */
+    b->planned = 1;
+    b->prep_s = NAN;
+    return h->nbeds++;
+  }
   dem_scene_hooks hk = {progress, 30.0, NULL, 0.0, h};
   double t0 = vh_now();
   dem_scene *sc = NULL;
@@ -192,7 +198,10 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
       sc = NULL;
       dem_err_set(err, DEM_EINVAL, "%s is not an unloaded bed", b->path);
     }
-    if (sc) vh_log(h, "bed %s: reused %s", name, b->path);
+    if (sc) {
+      b->prep_s = vh_bed_info_load(b);
+      vh_log(h, "bed %s: reused %s", name, b->path);
+    }
     else vh_log(h, "bed %s: cannot reuse (%s): preparing it anew", name, err->msg);
     *err = (dem_err){0};
   }
@@ -209,6 +218,8 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
       dem_scene_free(sc);
       return -1;
     }
+    b->prep_s = vh_now() - t0;
+    vh_bed_info_save(b, h->threads);
   }
   dem_scene_info in;
   dem_scene_get_info(sc, &in);
@@ -293,6 +304,26 @@ static void stats(const vh_run *r, const double *y, double lo, double hi, dem_se
   free(v);
 }
 
+static void run_stats(const vh *h, vh_run *r) {
+  const vh_tier *t = h->tier;
+  if (r->status != DEM_OK) return;
+  stats(r, r->H, t->plateau_lo, t->plateau_hi, &r->sH);
+  stats(r, r->H, t->early_lo, t->early_hi, &r->sEarly);
+  stats(r, r->bin_p, t->plateau_lo, t->plateau_hi, &r->sp);
+  stats(r, r->bin_q, t->plateau_lo, t->plateau_hi, &r->sq);
+  stats(r, r->bin_phi, t->plateau_lo, t->plateau_hi, &r->sphi);
+}
+
+void vh_reset(vh *h) {
+  for (int i = 0; i < h->nruns; i++) {
+    vh_run *u = &h->runs[i];
+    free(u->hr), free(u->H), free(u->bin_p), free(u->bin_q), free(u->bin_phi);
+    free(u->base_p), free(u->F);
+  }
+  h->nruns = 0;
+  h->nbeds = 0;
+}
+
 int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   int bi = vh_bed_get(h, bspec, err);
   if (bi < 0) return -1;
@@ -315,6 +346,28 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
     size_t len = strlen(r->label);
     snprintf(r->label + len, sizeof r->label - len, ", k x%g", b->kscale);
   }
+  if (h->plan) { /* listed, not run: a placeholder the cases see as not (yet) available */
+    r->status = DEM_EINTERRUPTED;
+    snprintf(r->error, sizeof r->error, "planned");
+    r->sH.mean = r->sp.mean = r->sq.mean = r->sphi.mean = r->sEarly.mean = NAN;
+    h->nruns++;
+    return h->nruns - 1;
+  }
+  char cpath[700] = "";
+  if (h->use_cache) {
+    char bname[256];
+    bed_name(h, b, bname, sizeof bname);
+    vh_cache_path(h, bname, ind, cpath, sizeof cpath);
+    if (vh_cache_load(h, cpath, b->path, r) == 0) {
+      h->nruns++;
+      run_stats(h, r);
+      vh_log(h, "run %d: %s: cached (%s; made in %.0f s with %d threads): H plateau %.0f +- "
+             "%.0f Pa", h->nruns - 1, r->label, cpath, r->wall_s, r->threads, r->sH.mean,
+             r->sH.se);
+      return h->nruns - 1;
+    }
+  }
+  r->threads = h->threads;
   dem_scene_config o;
   if (bed_config(h, b, &o, err)) return -1;
   o.shape = ind->shape;
@@ -373,17 +426,21 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   dem_scene_free(sc);
   r->wall_s = vh_now() - t0;
   r->status = rc;
+  if (rc) snprintf(r->error, sizeof r->error, "%.40s: %.270s", dem_strerror(rc), err->msg);
+  /* Kept for later invocations: a finished run, or one the engine's own checks stopped (the
+   * same code stops it again at the same step); not an interruption or a resource error. */
+  if (cpath[0] && (rc == DEM_OK || rc == DEM_ERUNAWAY || rc == DEM_EUNSTABLE ||
+                   rc == DEM_ENONFINITE || rc == DEM_EPHYSICS)) {
+    dem_err e2 = {0};
+    if (vh_cache_save(h, cpath, b->path, r, &e2))
+      vh_log(h, "run %d: not kept: %s", h->nruns - 1, e2.msg);
+  }
   if (rc) {
-    snprintf(r->error, sizeof r->error, "%.40s: %.270s", dem_strerror(rc), err->msg);
     vh_log(h, "run %d FAILED: %s", h->nruns - 1, r->error);
     *err = (dem_err){0};
     return h->nruns - 1;
   }
-  stats(r, r->H, t->plateau_lo, t->plateau_hi, &r->sH);
-  stats(r, r->H, t->early_lo, t->early_hi, &r->sEarly);
-  stats(r, r->bin_p, t->plateau_lo, t->plateau_hi, &r->sp);
-  stats(r, r->bin_q, t->plateau_lo, t->plateau_hi, &r->sq);
-  stats(r, r->bin_phi, t->plateau_lo, t->plateau_hi, &r->sphi);
+  run_stats(h, r);
   vh_log(h, "run %d: %zu samples to h/r %.3f, H plateau %.0f +- %.0f Pa (sd %.0f), bin p %.0f Pa, "
          "%.0f s, %ld steps", h->nruns - 1, r->n, r->n ? r->hr[r->n - 1] : 0.0, r->sH.mean,
          r->sH.se, r->sH.sd, r->sp.mean, r->wall_s, r->steps);

@@ -66,7 +66,9 @@ typedef struct vh_bed {
   /* filled in when prepared */
   int ready;
   char path[512];      /* scene checkpoint */
-  double wall_s;       /* s, preparation wall time */
+  double wall_s;       /* s, wall time of this invocation (preparation or restore) */
+  double prep_s;       /* s, wall time of the preparation (NaN: unknown, made elsewhere) */
+  int planned;         /* listed by the plan (--plan, MPI), not prepared yet */
   size_t n;            /* particles */
   double phi, bed_top; /* -, m after unloading */
   double dt;           /* s */
@@ -89,7 +91,9 @@ typedef struct vh_run {
   vh_indent ind;
   int status;          /* DEM_OK or the error */
   char error[320];
-  double wall_s;
+  int cached;          /* 1: loaded from the run cache (cache.c), not run by this invocation */
+  int threads;         /* OpenMP threads of the run that made it */
+  double wall_s;       /* s, wall time of the run (when it was made) */
   long steps;
   double dt;           /* s */
   double surface;      /* m, bed surface under the footprint (dem_bed_surface) */
@@ -126,6 +130,8 @@ typedef struct vh_case_result {
   int nruns;
   int runs[VH_MAX_CASE_RUNS]; /* indices into the harness' runs */
   double wall_s;         /* wall time spent on this case's new beds and runs */
+  double cost_s;         /* wall time its beds and runs took when they were made (the
+                            ones no earlier case used), cached or not */
   char labels[VH_MAX_CASE_RUNS][40]; /* per run, for the figures */
   double x[VH_MAX_CASE_RUNS];         /* the varied parameter (NAN: none) */
   const char *xlabel;    /* its name and unit, for the trend figure (NULL: no trend) */
@@ -146,6 +152,9 @@ typedef struct vh {
   int nruns;
   vh_run runs[VH_MAX_RUNS];
   double t0;             /* wall clock at the start */
+  int plan;              /* 1: cases only list their beds and runs (nothing is prepared) */
+  int rank, nranks;      /* MPI rank and size (0, 1 without MPI) */
+  int use_cache;         /* runs are kept in and reused from beds_dir (cache.c) */
 } vh;
 
 typedef struct vh_case {
@@ -171,6 +180,25 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err);
 /* Index of the run (run on first use; identical runs are shared between cases). A failed
  * run is returned with status != DEM_OK (the case reports ERROR). -1 only on setup errors. */
 int vh_run_get(vh *h, const vh_bed *bed, const vh_indent *ind, dem_err *err);
+
+/* Run cache (cache.c): runs kept across invocations in beds_dir. */
+const char *vh_code_id(void); /* hash of this executable */
+void vh_cache_path(const vh *h, const char *bed_name, const vh_indent *in, char *buf,
+                   size_t len);
+/* 0 and r filled (series, scalars, status, cached = 1) on a hit; -1 on a miss. */
+int vh_cache_load(const vh *h, const char *path, const char *bed_path, vh_run *r);
+int vh_cache_save(const vh *h, const char *path, const char *bed_path, const vh_run *r,
+                  dem_err *err);
+void vh_bed_info_save(const vh_bed *b, int threads);
+double vh_bed_info_load(const vh_bed *b);
+/* Free the series of every run and forget the beds and runs (after a plan). */
+void vh_reset(vh *h);
+
+/* Distribution (dist.c): list every bed and run of the selected cases (h->plan), then
+ * prepare the beds and make the runs on the MPI ranks (longest first), each into beds_dir;
+ * afterwards rank 0 evaluates the cases from the cache. Returns DEM_OK or an error. */
+typedef int (*vh_cases_fn)(vh *h, void *user);
+int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_err *err);
 
 /* Tests on plateau means (independent runs: z-test on the combined standard error). */
 int vh_greater(const vh *h, const dem_series_stats *a, const dem_series_stats *b,

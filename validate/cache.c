@@ -1,0 +1,195 @@
+/* cache.c — runs kept across invocations, next to the beds (--beds DIR).
+ *
+ * A run is an indentation of one bed with one indenter; its result is the raw loading series
+ * (h/r, H, bin p, q, phi, base p, F per sample) and a few scalars. The statistics are not
+ * stored: they are recomputed from the series on load, so a cached run serves any plateau
+ * window. A cached run is used only if all of these match what this invocation would run:
+ *   - the key: the bed's name (every parameter a bed depends on) and every indentation
+ *     parameter (shape, D, gamma*, kn scale, indenter mu, dt scale, h/r at the end, sampling);
+ *   - the bed file: its size and modification time when the run was made (a bed prepared
+ *     anew invalidates its runs);
+ *   - the code: a 64-bit FNV-1a hash of this executable (libdem is linked statically), so a
+ *     rebuilt program runs everything again. Runs are bit-identical for the same code and
+ *     thread count; the thread count is recorded, not matched (another count gives the same
+ *     physics to rounding).
+ * Anything else (a missing, truncated or foreign file) is a cache miss, never an error: the
+ * run is computed and the file replaced. Files are written to a temporary name and renamed,
+ * so an interrupted invocation leaves no half-written entry.
+ * Format: text, "# key value" header lines, then one row of %.17g numbers per sample.
+ */
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "vh.h"
+
+#define CACHE_MAGIC "# dem-validate run cache, format 1"
+
+const char *vh_code_id(void) {
+  static char id[24] = "";
+  if (id[0]) return id;
+  uint64_t hsh = 1469598103934665603ULL; /* FNV-1a 64 offset basis */
+  FILE *f = fopen("/proc/self/exe", "rb");
+  if (f) {
+    unsigned char buf[65536];
+    size_t m;
+    while ((m = fread(buf, 1, sizeof buf, f)) > 0)
+      for (size_t i = 0; i < m; i++) hsh = (hsh ^ buf[i]) * 1099511628211ULL;
+    fclose(f);
+    snprintf(id, sizeof id, "%016" PRIx64, hsh);
+  } else {
+    snprintf(id, sizeof id, "unknown"); /* never matches a file: no run is reused */
+  }
+  return id;
+}
+
+static int bed_stamp(const char *path, char *buf, size_t len) {
+  struct stat st;
+  if (stat(path, &st)) return -1;
+  snprintf(buf, len, "%lld.%09ld:%lld", (long long)st.st_mtim.tv_sec, (long)st.st_mtim.tv_nsec,
+           (long long)st.st_size);
+  return 0;
+}
+
+void vh_cache_path(const vh *h, const char *bed_name, const vh_indent *in, char *buf,
+                   size_t len) {
+  static const char *shp[] = {"sphere", "cylinder", "cube"};
+  int s = (int)in->shape;
+  snprintf(buf, len, "%.300s/run_%.160s__%s%g_g%g_kn%g_mui%g_dts%g_h%g.dat", h->beds_dir,
+           bed_name, (s >= 0 && s < 3) ? shp[s] : "shape", in->D, in->gamma_star, in->kn_scale,
+           in->mu_ind, in->dt_scale, h->tier->h_end);
+}
+
+/* The series columns, in file order. */
+static double **columns(vh_run *r, int k) {
+  double **c[] = {&r->hr, &r->H, &r->bin_p, &r->bin_q, &r->bin_phi, &r->base_p, &r->F};
+  return c[k];
+}
+#define NCOLS 7
+
+int vh_cache_load(const vh *h, const char *path, const char *bed_path, vh_run *r) {
+  FILE *f = fopen(path, "r");
+  if (!f) return -1;
+  char line[1024], want_code[64], want_bed[96], code[64] = "", bed[96] = "";
+  snprintf(want_code, sizeof want_code, "%s", vh_code_id());
+  if (bed_stamp(bed_path, want_bed, sizeof want_bed)) {
+    fclose(f);
+    return -1;
+  }
+  long n = -1;
+  int status = -1, have_stress = 0, ok = 0;
+  if (!fgets(line, sizeof line, f) || strncmp(line, CACHE_MAGIC, strlen(CACHE_MAGIC)) != 0)
+    goto miss;
+  while (fgets(line, sizeof line, f)) {
+    if (line[0] != '#') break;
+    char key[32], *val = line + 2;
+    if (sscanf(line, "# %31s", key) != 1) continue;
+    val += strlen(key);
+    while (*val == ' ') val++;
+    val[strcspn(val, "\n")] = '\0';
+    if (!strcmp(key, "code")) snprintf(code, sizeof code, "%s", val);
+    else if (!strcmp(key, "bed_file")) snprintf(bed, sizeof bed, "%s", val);
+    else if (!strcmp(key, "status")) status = atoi(val);
+    else if (!strcmp(key, "error")) snprintf(r->error, sizeof r->error, "%s", val);
+    else if (!strcmp(key, "wall_s")) r->wall_s = strtod(val, NULL);
+    else if (!strcmp(key, "threads")) r->threads = atoi(val);
+    else if (!strcmp(key, "steps")) r->steps = strtol(val, NULL, 10);
+    else if (!strcmp(key, "dt")) r->dt = strtod(val, NULL);
+    else if (!strcmp(key, "surface")) r->surface = strtod(val, NULL);
+    else if (!strcmp(key, "surface_sd")) r->surface_sd = strtod(val, NULL);
+    else if (!strcmp(key, "max_overlap")) r->max_overlap = strtod(val, NULL);
+    else if (!strcmp(key, "base_p0")) r->base_p0 = strtod(val, NULL);
+    else if (!strcmp(key, "have_stress")) have_stress = atoi(val);
+    else if (!strcmp(key, "samples")) n = strtol(val, NULL, 10);
+  }
+  if (strcmp(code, want_code) || strcmp(bed, want_bed) || status < 0 || n < 0 || n > 10000000)
+    goto miss;
+  for (int k = 0; k < NCOLS; k++) {
+    *columns(r, k) = calloc((size_t)n + 1, sizeof(double));
+    if (!*columns(r, k)) goto miss;
+  }
+  /* `line` holds the first data row (or EOF was reached with n == 0) */
+  for (long i = 0; i < n; i++) {
+    if (i > 0 && !fgets(line, sizeof line, f)) goto miss;
+    char *p = line, *e;
+    for (int k = 0; k < NCOLS; k++) {
+      double v = strtod(p, &e);
+      if (e == p) goto miss;
+      (*columns(r, k))[i] = v;
+      p = e;
+    }
+  }
+  r->n = (size_t)n;
+  r->status = status;
+  r->have_stress = have_stress;
+  r->cached = 1;
+  ok = 1;
+miss:
+  fclose(f);
+  if (!ok) {
+    for (int k = 0; k < NCOLS; k++) {
+      free(*columns(r, k));
+      *columns(r, k) = NULL;
+    }
+    r->n = 0;
+    r->error[0] = '\0';
+    return -1;
+  }
+  return 0;
+}
+
+int vh_cache_save(const vh *h, const char *path, const char *bed_path, const vh_run *r,
+                  dem_err *err) {
+  char stamp[96], tmp[600];
+  if (bed_stamp(bed_path, stamp, sizeof stamp))
+    return dem_err_set(err, DEM_EIO, "%s: %s", bed_path, strerror(errno));
+  snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
+  FILE *f = fopen(tmp, "w");
+  if (!f) return dem_err_set(err, DEM_EIO, "%s: %s", tmp, strerror(errno));
+  fprintf(f, "%s\n# code %s\n# bed_file %s\n# label %s\n# status %d\n", CACHE_MAGIC,
+          vh_code_id(), stamp, r->label, r->status);
+  if (r->error[0]) fprintf(f, "# error %s\n", r->error);
+  fprintf(f, "# wall_s %.17g\n# threads %d\n# steps %ld\n# dt %.17g\n# surface %.17g\n"
+          "# surface_sd %.17g\n# max_overlap %.17g\n# base_p0 %.17g\n# have_stress %d\n"
+          "# samples %zu\n", r->wall_s, h->threads, r->steps, r->dt, r->surface,
+          r->surface_sd, r->max_overlap, r->base_p0, r->have_stress, r->n);
+  fprintf(f, "# columns h/r H[Pa] bin_p[Pa] bin_q[Pa] bin_phi base_p[Pa] F[N]\n");
+  for (size_t i = 0; i < r->n; i++)
+    fprintf(f, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", r->hr[i], r->H[i], r->bin_p[i],
+            r->bin_q[i], r->bin_phi[i], r->base_p[i], r->F[i]);
+  int bad = ferror(f);
+  if (fclose(f) || bad || rename(tmp, path)) {
+    int e = errno;
+    remove(tmp);
+    return dem_err_set(err, DEM_EIO, "%s: cannot write the run cache (%s)", path, strerror(e));
+  }
+  return DEM_OK;
+}
+
+/* The preparation wall time of a bed, kept next to its checkpoint (BED.h5.info), so that the
+ * cost of a case can be reported when its bed was prepared by an earlier invocation. */
+void vh_bed_info_save(const vh_bed *b, int threads) {
+  char p[600], tmp[620];
+  snprintf(p, sizeof p, "%s.info", b->path);
+  snprintf(tmp, sizeof tmp, "%s.tmp%ld", p, (long)getpid());
+  FILE *f = fopen(tmp, "w");
+  if (!f) return;
+  fprintf(f, "prep_wall_s %.6f\nthreads %d\n", b->prep_s, threads);
+  if (fclose(f) || rename(tmp, p)) remove(tmp);
+}
+
+double vh_bed_info_load(const vh_bed *b) {
+  char p[600];
+  snprintf(p, sizeof p, "%s.info", b->path);
+  FILE *f = fopen(p, "r");
+  double s = NAN;
+  if (!f) return s;
+  if (fscanf(f, "prep_wall_s %lf", &s) != 1) s = NAN;
+  fclose(f);
+  return s;
+}
