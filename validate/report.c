@@ -211,6 +211,15 @@ static void case_plots(vh *h, vh_case_result *r, int plots, dem_err *err) {
     snprintf(title, sizeof title, "%s: hydrostatic stress in the dynamic bin", r->title);
     if (!vh_plot_runs(h, png, title, runs, n, labels, 3, err))
       snprintf(r->plots[k++], 96, "%s", png);
+    if (strcmp(r->name, "bed-height") == 0) {
+      /* the static bin at the base (thesis Figs 5.13-5.14: whether the indentation reaches
+       * the base of the die) */
+      snprintf(png, sizeof png, "%s_base.png", r->name);
+      snprintf(title, sizeof title, "%s: hydrostatic stress in the static bin at the base",
+               r->title);
+      if (!vh_plot_runs(h, png, title, runs, n, labels, 6, err))
+        snprintf(r->plots[k++], 96, "%s", png);
+    }
     if (strcmp(r->name, "indenter-shape") == 0) {
       snprintf(png, sizeof png, "%s_phi.png", r->name);
       snprintf(title, sizeof title, "%s: solids fraction of the dynamic bin", r->title);
@@ -225,6 +234,32 @@ static void case_plots(vh *h, vh_case_result *r, int plots, dem_err *err) {
       snprintf(r->plots[k++], 96, "%s", png);
   }
   *err = (dem_err){0};
+}
+
+/* Copy src to dir/name (through a temporary file). 0 or -1. */
+static int copy_file(const char *src, const char *dir, const char *name) {
+  char dst[800], tmp[820];
+  snprintf(dst, sizeof dst, "%s/%s", dir, name);
+  snprintf(tmp, sizeof tmp, "%s.tmp%ld", dst, (long)getpid());
+  FILE *in = fopen(src, "rb");
+  if (!in) return -1;
+  FILE *out = fopen(tmp, "wb");
+  if (!out) {
+    fclose(in);
+    return -1;
+  }
+  char buf[65536];
+  size_t m;
+  int bad = 0;
+  while ((m = fread(buf, 1, sizeof buf, in)) > 0)
+    if (fwrite(buf, 1, m, out) != m) bad = 1;
+  bad |= ferror(in);
+  fclose(in);
+  if (fclose(out) || bad || rename(tmp, dst)) {
+    remove(tmp);
+    return -1;
+  }
+  return 0;
 }
 
 static void machine(char *b, size_t n) {
@@ -372,6 +407,24 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
   d_para(&d, "The settings of the tiers (stiffness scale, gamma*, time-step factor, die size) "
              "are justified by the speed-versus-accuracy study and the stability map in "
              "docs/validation-study.md (`dem-bench-scene --study speed|stability`).");
+  {
+    /* the committed charts of that study (docs/study/), copied into the report folder: they
+     * are not recomputed by this invocation, which the caption says */
+    static const char *fig[][2] = {
+        {"study_speed.png", "plateau H and its standard error against CPU time: stiffness "
+                            "scale, gamma*, time-step factor, die (docs/study/, 2026-11-22)"},
+        {"study_stability.png", "stability map: where stiffness scale, time-step factor and "
+                                "rate break the answer (docs/study/, 2026-11-22)"}};
+    for (int i = 0; i < 2; i++) {
+      char src[700];
+      snprintf(src, sizeof src, "%s/docs/study/%s", VH_SOURCE_DIR, fig[i][0]);
+      if (copy_file(src, h->out, fig[i][0]) == 0) {
+        d_img(&d, fig[i][0], fig[i][1]);
+        d_para(&d, "Figure: %s.", fig[i][1]);
+      }
+      else d_para(&d, "(%s: not found, the chart is in the source tree's docs/study/)", src);
+    }
+  }
   fputs("</body></html>\n", d.html);
   if ((rc = close_rename(d.md, tmd, h->out, "report.md", err))) {
     fclose(d.html);
