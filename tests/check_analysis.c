@@ -116,6 +116,33 @@ START_TEST(test_surface) {
   RELTOL(s.z_max, mx, 1e-14);
   ck_assert(s.z_pct <= s.z_max && s.z_pct > s.z);
 
+  /* A deep bed whose columns hold their top particle towards the outside and the lower ones
+   * towards the axis: the columns cut by the footprint circle must keep their real top
+   * (regression: selecting particles by their own distance to the axis took an inner, lower
+   * particle as the top of such a column, biasing z low and inflating sd). Flat top: z is
+   * the top exactly, sd 0, one column per lattice cell whose centre is within 4.2 a. */
+  {
+    enum { NC = 15, NL = 6 };
+    static double xd[3 * NC * NC * NL], rd[NC * NC * NL];
+    size_t nd = 0;
+    for (int j = 0; j < NC; j++)
+      for (int i = 0; i < NC; i++)
+        for (int k = 0; k < NL; k++) {
+          int di = i - NC / 2, dj = j - NC / 2;
+          double sx = di > 0 ? 1.0 : di < 0 ? -1.0 : 0.0, sy = dj > 0 ? 1.0 : dj < 0 ? -1.0 : 0.0;
+          double off = k == NL - 1 ? 0.45 : -0.45; /* the top outwards, the rest inwards */
+          xd[3 * nd] = ax + (di + off * sx) * a;
+          xd[3 * nd + 1] = ay + (dj + off * sy) * a;
+          xd[3 * nd + 2] = z0 + k * a;
+          rd[nd++] = rad;
+        }
+    ck_assert_int_eq(dem_bed_surface(nd, xd, rd, ax, ay, 4.2e-3, a, 90.0, &s, &err), DEM_OK);
+    double top6 = z0 + (NL - 1) * a + rad;
+    RELTOL(s.z, top6, 1e-14);
+    ck_assert_double_eq_tol(s.sd, 0.0, 1e-15);
+    ck_assert_uint_eq(s.ncol, 57);
+  }
+
   /* Errors: empty footprint, bad arguments. */
   ck_assert_int_eq(dem_bed_surface(n, x, r, ax + 1.0, ay, 4.2e-3, 0.0, 90.0, &s, &err),
                    DEM_EINVAL);

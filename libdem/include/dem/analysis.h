@@ -46,9 +46,10 @@ int dem_hardness_curve(size_t n, const double *F, const double *h, double D, dou
 /* ---- bed surface under the indenter ---------------------------------------------------- */
 
 /* The surface height from the particles under the indenter footprint (docs/analysis.md):
- * particles whose centres lie within r_foot of the indenter axis (x, y) = (ax, ay) are
- * binned into square columns of side `cell` (a grid with one column centred on the axis);
- * each occupied column's top is max(z_i + r_i). The surface z is the mean of the column
+ * square columns of side `cell` (a grid with one column centred on the axis (x, y) =
+ * (ax, ay)) whose centres lie within r_foot of the axis; each occupied column's top is
+ * max(z_i + r_i) over the particles whose centres lie in the column (also those outside the
+ * circle: a column cut by it keeps its real top). The surface z is the mean of the column
  * tops; sd is their spread (the bed's roughness, the uncertainty of the depth origin of a
  * single point of contact) and se = sd / sqrt(ncol) the standard error of z. */
 typedef struct dem_surface {
@@ -62,7 +63,8 @@ typedef struct dem_surface {
 } dem_surface;
 
 /* x [3n] centres, radius [n]; r_foot > 0 (m); cell > 0 (m), or 0 for twice the mean radius
- * of the footprint particles (one particle diameter); pct in [0, 100] (e.g. 90).
+ * of the particles whose centres lie within r_foot (one particle diameter; nparticles
+ * counts them, z_max is the highest of their tops); pct in [0, 100] (e.g. 90).
  * DEM_ERANGE for bad arguments, DEM_EINVAL if no particle lies in the footprint,
  * DEM_ENOMEM. */
 int dem_bed_surface(size_t n, const double *x, const double *radius, double ax, double ay,

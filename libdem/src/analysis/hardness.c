@@ -87,14 +87,21 @@ int dem_bed_surface(size_t n, const double *x, const double *radius, double ax, 
   double *top = malloc(w * w * sizeof *top);
   if (!top) return dem_err_set(err, DEM_ENOMEM, "bed surface: %zu columns", w * w);
   for (size_t c = 0; c < w * w; c++) top[c] = -INFINITY;
+  /* A column belongs to the footprint if its centre lies within r_foot of the axis, and its
+   * top is the highest particle whose centre lies anywhere in the column. (Selecting the
+   * particles by their own distance instead, as before, made the columns cut by the circle
+   * take their top from whichever inner particle was left, possibly many layers down: on
+   * the 50 d bed the surface came out 0.4 d low with a spread of 3.3 d instead of 0.3 d.) */
   for (size_t i = 0; i < n; i++) {
     double dx = x[3 * i] - ax, dy = x[3 * i + 1] - ay;
-    if (dx * dx + dy * dy > r_foot * r_foot) continue;
+    if (!isfinite(dx) || !isfinite(dy) || fabs(dx) > r_foot + cell || fabs(dy) > r_foot + cell)
+      continue;
     long ix = lround(dx / cell) + (long)K, iy = lround(dy / cell) + (long)K;
-    if (ix < 0) ix = 0;
-    if (iy < 0) iy = 0;
-    if (ix >= (long)w) ix = (long)w - 1;
-    if (iy >= (long)w) iy = (long)w - 1;
+    if (ix < 0 || iy < 0 || ix >= (long)w || iy >= (long)w) continue;
+    double cx = (double)(ix - (long)K) * cell, cy = (double)(iy - (long)K) * cell;
+    if (cx * cx + cy * cy > r_foot * r_foot) continue;
+    if (!isfinite(x[3 * i + 2]) || !isfinite(radius[i]))
+      return dem_err_set(err, DEM_ENONFINITE, "bed surface: particle %zu not finite", i);
     double t = x[3 * i + 2] + radius[i];
     size_t c = (size_t)iy * w + (size_t)ix;
     if (t > top[c]) top[c] = t;
