@@ -179,7 +179,7 @@ void vh_bed_info_save(const vh_bed *b, int threads) {
   snprintf(tmp, sizeof tmp, "%s.tmp%ld", p, (long)getpid());
   FILE *f = fopen(tmp, "w");
   if (!f) return;
-  fprintf(f, "prep_wall_s %.6f\nthreads %d\n", b->prep_s, threads);
+  fprintf(f, "prep_wall_s %.17g\nthreads %d\n", b->prep_s, threads); /* exact: summary.json */
   if (fclose(f) || rename(tmp, p)) remove(tmp);
 }
 
