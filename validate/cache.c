@@ -132,11 +132,7 @@ int vh_cache_load(const vh *h, const char *path, const char *bed_path, vh_run *r
 miss:
   fclose(f);
   if (!ok) {
-    for (int k = 0; k < NCOLS; k++) {
-      free(*columns(r, k));
-      *columns(r, k) = NULL;
-    }
-    r->n = 0;
+    vh_run_release(r);
     r->error[0] = '\0';
     return -1;
   }

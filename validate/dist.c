@@ -115,7 +115,6 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
   const double tf = h->threads == 1 ? 1.9 : 1.0;
   for (int i = 0; i < nb; i++) {
     beds[i] = h->beds[i];
-    beds[i].planned = 0;
     cost[i] = tf * bed_cost(&beds[i]);
   }
   for (int j = 0; j < nr; j++) {
@@ -155,8 +154,7 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
       if (have) printf(" (%.0f s)", r.wall_s);
       else printf(" (est. %.0f s)", cost[nb + j]);
       printf("\n");
-      free(r.hr), free(r.H), free(r.bin_p), free(r.bin_q), free(r.bin_phi), free(r.base_p),
-          free(r.F);
+      vh_run_release(&r);
       total += cost[nb + j];
       if (!have) todo += cost[nb + j];
     }

@@ -181,7 +181,6 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
   dem_scene_config c;
   if (bed_config(h, b, &c, err)) return -1;
   if (h->plan) { /* listed, not prepared (dist.c) */
-    b->planned = 1;
     b->prep_s = NAN;
     return h->nbeds++;
   }
@@ -314,12 +313,15 @@ static void run_stats(const vh *h, vh_run *r) {
   stats(r, r->bin_phi, t->plateau_lo, t->plateau_hi, &r->sphi);
 }
 
+void vh_run_release(vh_run *u) {
+  free(u->hr), free(u->H), free(u->bin_p), free(u->bin_q), free(u->bin_phi);
+  free(u->base_p), free(u->F);
+  u->hr = u->H = u->bin_p = u->bin_q = u->bin_phi = u->base_p = u->F = NULL;
+  u->n = 0;
+}
+
 void vh_reset(vh *h) {
-  for (int i = 0; i < h->nruns; i++) {
-    vh_run *u = &h->runs[i];
-    free(u->hr), free(u->H), free(u->bin_p), free(u->bin_q), free(u->bin_phi);
-    free(u->base_p), free(u->F);
-  }
+  for (int i = 0; i < h->nruns; i++) vh_run_release(&h->runs[i]);
   h->nruns = 0;
   h->nbeds = 0;
 }

@@ -68,7 +68,6 @@ typedef struct vh_bed {
   char path[512];      /* scene checkpoint */
   double wall_s;       /* s, wall time of this invocation (preparation or restore) */
   double prep_s;       /* s, wall time of the preparation (NaN: unknown, made elsewhere) */
-  int planned;         /* listed by the plan (--plan, MPI), not prepared yet */
   size_t n;            /* particles */
   double phi, bed_top; /* -, m after unloading */
   double dt;           /* s */
@@ -191,6 +190,8 @@ int vh_cache_save(const vh *h, const char *path, const char *bed_path, const vh_
                   dem_err *err);
 void vh_bed_info_save(const vh_bed *b, int threads);
 double vh_bed_info_load(const vh_bed *b);
+/* Free the series of one run (pointers set to NULL, n = 0). */
+void vh_run_release(vh_run *r);
 /* Free the series of every run and forget the beds and runs (after a plan). */
 void vh_reset(vh *h);
 
