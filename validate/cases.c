@@ -165,16 +165,29 @@ static double spearman(const double *x, const double *y, int n) {
   return 1.0 - 6.0 * d2 / (n * ((double)n * n - 1.0));
 }
 
+/* A run not made because of the --budget is not an error: its criteria stay N/A, and so
+ * does the case unless a criterion it could evaluate failed (a partly evaluated case is
+ * not called PASS). */
 static void finish(vh *h, vh_case_result *r) {
-  int err = 0, fail = 0, any = 0;
+  int err = 0, fail = 0, any = 0, skipped = 0;
   s_bed_cur = 0.0;
-  for (int i = 0; i < r->nruns; i++)
-    if (h->runs[r->runs[i]].status != DEM_OK) err = 1;
+  for (int i = 0; i < r->nruns; i++) {
+    const vh_run *u = &h->runs[r->runs[i]];
+    if (u->skipped) skipped++;
+    else if (u->status != DEM_OK) err = 1;
+  }
   for (int i = 0; i < r->nchecks; i++) {
     if (r->checks[i].status == VH_FAIL) fail = 1;
     if (r->checks[i].status != VH_NA) any = 1;
   }
-  r->status = err ? VH_ERROR : fail ? VH_FAIL : any ? VH_PASS : VH_NA;
+  r->status = err ? VH_ERROR : fail ? VH_FAIL : skipped ? VH_NA : any ? VH_PASS : VH_NA;
+  if (skipped) {
+    size_t len = strlen(r->note);
+    snprintf(r->note + len, sizeof r->note - len,
+             "%s%d of its %d runs not made (over the --budget): the criteria that need them "
+             "are N/A, and so is the case unless a criterion fails.", len ? " " : "", skipped,
+             r->nruns);
+  }
 }
 
 static void names_D(char names[][24], const double *D, int n, const char *fmt) {

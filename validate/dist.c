@@ -15,7 +15,14 @@
  * Between the phases the ranks wait in a barrier that sleeps (MPI_Ibarrier + MPI_Test every
  * 50 ms): a busy-polling MPI_Barrier would take a core from the ranks still computing.
  * Without MPI (not built with it, or not started by mpirun) there is one rank and the plan is
- * used only by --plan, which prints it.
+ * used by --plan, which prints it, and by --budget.
+ *
+ * --budget S (seconds of wall time from the start): every rank makes its items cheapest
+ * first, and starts one only if its estimate, scaled by measured / estimated over the items
+ * it has made so far, ends within S; the rest are skipped. Rank 0 then evaluates the cases
+ * from the cache only (h->cache_only): a skipped run is a placeholder whose criteria are N/A
+ * (cases.c), so a time-limited invocation reports every criterion it could decide, and the
+ * next invocation over the same --beds folder goes on from what this one made.
  *
  * Cost estimates (s, for the order and the --plan table only; measured on the 2-core Xeon of
  * docs/validation.md with 2 threads, x1.9 for one thread: the 20 d bed in the 45 d die at x0.01 454 s, the 16 d
@@ -59,6 +66,18 @@ static void wait_all(const vh *h) {
 #endif
 }
 
+/* ord[0..n) = 0..n-1 sorted by cost, descending (desc) or ascending; stable. */
+static void sort_by_cost(const double *cost, int n, int desc, int *ord) {
+  for (int i = 0; i < n; i++) ord[i] = i;
+  for (int i = 1; i < n; i++) /* insertion sort: n is a few tens */
+    for (int j = i; j > 0 && (desc ? cost[ord[j]] > cost[ord[j - 1]]
+                                   : cost[ord[j]] < cost[ord[j - 1]]); j--) {
+      int t = ord[j];
+      ord[j] = ord[j - 1];
+      ord[j - 1] = t;
+    }
+}
+
 /* Longest processing time first: owner[i] for costs[0..n). */
 static void assign(const double *cost, int n, int nranks, int *owner) {
   int *ord = malloc((size_t)(n > 0 ? n : 1) * sizeof *ord);
@@ -67,13 +86,7 @@ static void assign(const double *cost, int n, int nranks, int *owner) {
     for (int i = 0; i < n; i++) owner[i] = i % nranks;
     return;
   }
-  for (int i = 0; i < n; i++) ord[i] = i;
-  for (int i = 1; i < n; i++) /* insertion sort by cost, descending; stable */
-    for (int j = i; j > 0 && cost[ord[j]] > cost[ord[j - 1]]; j--) {
-      int t = ord[j];
-      ord[j] = ord[j - 1];
-      ord[j - 1] = t;
-    }
+  sort_by_cost(cost, n, 1, ord);
   for (int k = 0; k < n; k++) {
     int best = 0;
     for (int r = 1; r < nranks && r < 256; r++)
@@ -94,6 +107,40 @@ static double makespan(const double *cost, int n, int nranks) {
   for (int r = 0; r < nranks && r < 256; r++) m = fmax(m, load[r]);
   free(own);
   return m;
+}
+
+/* 1 if the run is in the cache (with its wall time), 0 if not. */
+static int run_cached(const vh *h, const vh_bed *b, const vh_indent *in, char *cp, size_t len,
+                      double *wall_s) {
+  char bn[256];
+  snprintf(bn, sizeof bn, "%s", strrchr(b->path, '/') + 1);
+  bn[strlen(bn) - 3] = '\0'; /* ".h5" */
+  vh_cache_path(h, bn, in, cp, len);
+  vh_run r;
+  memset(&r, 0, sizeof r);
+  int have = access(b->path, R_OK) == 0 && vh_cache_load(h, cp, b->path, &r) == 0;
+  *wall_s = have ? r.wall_s : NAN;
+  vh_run_release(&r);
+  return have;
+}
+
+/* --budget: the estimates are scaled by what the items made so far by this rank in this
+ * invocation took against their estimates (1 before the first), so a slower or faster
+ * machine than the one of the constants is learnt from the first item. An item is started
+ * only if its scaled estimate ends within the budget; a started item runs to its end. */
+typedef struct budget_acc {
+  double est, spent; /* s, summed over the items made (not the ones found made) */
+} budget_acc;
+
+static int budget_fits(const vh *h, const budget_acc *a, double cost, double *end) {
+  const double ratio = a->est > 0 ? a->spent / a->est : 1.0;
+  *end = (vh_now() - h->t0) + ratio * cost;
+  return *end <= h->budget;
+}
+
+static void budget_skip(const vh *h, const char *what, int i, double cost, double end) {
+  vh_log(h, "rank %d: %s %d not made: its estimate (%.0f s, scaled) would end at %.0f s, past "
+         "the --budget of %.0f s", h->rank, what, i, cost, end, h->budget);
 }
 
 int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_err *err) {
@@ -141,20 +188,14 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
       if (!have) todo += cost[i];
     }
     for (int j = 0; j < nr; j++) {
-      const vh_bed *b = &beds[rbed[j]];
-      char bn[256], cp[700];
-      snprintf(bn, sizeof bn, "%s", strrchr(b->path, '/') + 1);
-      bn[strlen(bn) - 3] = '\0'; /* ".h5" */
-      vh_cache_path(h, bn, &inds[j], cp, sizeof cp);
-      vh_run r;
-      memset(&r, 0, sizeof r);
-      int have = access(b->path, R_OK) == 0 && vh_cache_load(h, cp, b->path, &r) == 0;
+      char cp[700];
+      double wall;
+      int have = run_cached(h, &beds[rbed[j]], &inds[j], cp, sizeof cp, &wall);
       printf("  run %2d  bed %2d  %-52s %s", j, rbed[j], strrchr(cp, '/') + 5,
              have ? "cached" : "to run");
-      if (have) printf(" (%.0f s)", r.wall_s);
+      if (have) printf(" (%.0f s)", wall);
       else printf(" (est. %.0f s)", cost[nb + j]);
       printf("\n");
-      vh_run_release(&r);
       total += cost[nb + j];
       if (!have) todo += cost[nb + j];
     }
@@ -170,31 +211,80 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
     return DEM_OK;
   }
 
+  /* Each rank makes its items in plan order, or with a --budget cheapest first (the most
+   * items, hence the most criteria, within the time). */
+  int *ord = malloc(((size_t)(nb + nr) + 1) * sizeof *ord);
+  if (!ord) {
+    free(beds), free(inds), free(rbed), free(owner), free(cost);
+    return dem_err_set(err, DEM_ENOMEM, "dem-validate: out of memory");
+  }
+  budget_acc acc = {0, 0};
+  int nfail = 0, nskip = 0;
   /* phase 1: beds */
   assign(cost, nb, h->nranks, owner);
-  int nfail = 0;
-  for (int i = 0; i < nb; i++) {
+  if (h->budget > 0) sort_by_cost(cost, nb, 0, ord);
+  else for (int i = 0; i < nb; i++) ord[i] = i;
+  for (int k = 0; k < nb; k++) {
+    const int i = ord[k];
     if (owner[i] != h->rank) continue;
+    const int have = access(beds[i].path, R_OK) == 0;
+    double end;
+    if (h->budget > 0 && !have && !budget_fits(h, &acc, cost[i], &end)) {
+      budget_skip(h, "bed", i, cost[i], end);
+      nskip++;
+      continue;
+    }
     dem_err e = {0};
+    const double t0 = vh_now();
     if (vh_bed_get(h, &beds[i], &e) < 0) {
       vh_log(h, "rank %d: bed %d failed: %s", h->rank, i, e.msg);
       nfail++;
+    } else if (!have) {
+      acc.est += cost[i];
+      acc.spent += vh_now() - t0;
     }
   }
   wait_all(h);
   vh_reset(h);
   /* phase 2: runs (vh_run_get writes each into the cache) */
   assign(cost + nb, nr, h->nranks, owner + nb);
-  for (int j = 0; j < nr; j++) {
+  if (h->budget > 0) sort_by_cost(cost + nb, nr, 0, ord);
+  else for (int j = 0; j < nr; j++) ord[j] = j;
+  for (int k = 0; k < nr; k++) {
+    const int j = ord[k];
     if (owner[nb + j] != h->rank) continue;
+    char cp[700];
+    double wall, end;
+    const int have = h->budget > 0 && run_cached(h, &beds[rbed[j]], &inds[j], cp, sizeof cp,
+                                                  &wall);
+    if (h->budget > 0 && !have) {
+      if (access(beds[rbed[j]].path, R_OK) != 0) { /* its bed was skipped, or failed */
+        vh_log(h, "rank %d: run %d not made: its bed was not prepared", h->rank, j);
+        nskip++;
+        continue;
+      }
+      if (!budget_fits(h, &acc, cost[nb + j], &end)) {
+        budget_skip(h, "run", j, cost[nb + j], end);
+        nskip++;
+        continue;
+      }
+    }
     dem_err e = {0};
-    int k = vh_run_get(h, &beds[rbed[j]], &inds[j], &e);
-    if (k < 0 || h->runs[k].status != DEM_OK) nfail++;
+    const double t0 = vh_now();
+    int r = vh_run_get(h, &beds[rbed[j]], &inds[j], &e);
+    if (r < 0 || h->runs[r].status != DEM_OK) nfail++;
+    if (!have) {
+      acc.est += cost[nb + j];
+      acc.spent += vh_now() - t0;
+    }
   }
   wait_all(h);
   vh_reset(h);
-  free(beds), free(inds), free(rbed), free(owner), free(cost);
+  free(ord), free(beds), free(inds), free(rbed), free(owner), free(cost);
   if (nfail)
     vh_log(h, "rank %d: %d of its beds or runs failed (the cases report them)", h->rank, nfail);
+  if (nskip)
+    vh_log(h, "rank %d: %d of its beds and runs not made within the --budget (the cases report "
+           "their criteria as N/A)", h->rank, nskip);
   return DEM_OK;
 }

@@ -2,7 +2,7 @@
  *
  *   dem-validate [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
  *                [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]
- *                [--plan] [--no-run-cache]
+ *                [--plan] [--no-run-cache] [--budget S]
  *   mpirun -n R dem-validate ...   beds and runs distributed over R ranks (validate/dist.c)
  *
  * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
@@ -32,7 +32,7 @@ static void usage(FILE *f) {
   fprintf(f,
           "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
           "          [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]\n"
-          "          [--plan] [--no-run-cache]\n"
+          "          [--plan] [--no-run-cache] [--budget S]\n"
           "       mpirun -n R %s ...   (independent beds and runs on R ranks)\n"
           "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
           "             same geometry, all eleven cases, ~30 min), full (thesis scale, all\n"
@@ -50,7 +50,11 @@ static void usage(FILE *f) {
           "  --plan     list the beds and runs the cases need, which of them are already in\n"
           "             the --beds folder, and an estimate of the rest; compute nothing\n"
           "  --no-run-cache  do not reuse runs kept in the --beds folder (they are kept\n"
-          "             there after every run, keyed by bed, indenter and this executable)\n",
+          "             there after every run, keyed by bed, indenter and this executable)\n"
+          "  --budget S make the beds and runs cheapest first and start none whose estimate\n"
+          "             (scaled by how long the ones made so far took) would end more than S\n"
+          "             seconds after the start; the criteria that need what was not made\n"
+          "             are N/A, and a later invocation over the same --beds goes on\n",
           prog, prog);
 }
 
@@ -143,7 +147,8 @@ static int run_cases(vh *h, void *user) {
     /* the cost of what this case was first to need, when it was made (cached or not) */
     r->cost_s = 0;
     for (int k = nb0; k < h->nbeds; k++)
-      r->cost_s += isfinite(h->beds[k].prep_s) ? h->beds[k].prep_s : h->beds[k].wall_s;
+      if (!h->beds[k].skipped)
+        r->cost_s += isfinite(h->beds[k].prep_s) ? h->beds[k].prep_s : h->beds[k].wall_s;
     for (int k = nr0; k < h->nruns; k++) r->cost_s += h->runs[k].wall_s;
     for (int k = 0; k < r->nchecks; k++)
       fprintf(o, "%-20s %-5s %s: %s (thesis: %s)\n", r->name,
@@ -194,11 +199,12 @@ int main(int argc, char **argv) {
                                  {"baseline", required_argument, 0, 'B'},
                                  {"plan", no_argument, 0, 'P'},
                                  {"no-run-cache", no_argument, 0, 'N'},
+                                 {"budget", required_argument, 0, 'T'},
                                  {"help", no_argument, 0, 'h'},
                                  {"version", no_argument, 0, 'V'},
                                  {0, 0, 0, 0}};
   const char *tier = "quick", *cases = NULL, *out = NULL, *beds = NULL, *baseline = NULL;
-  double threads = 2, level = 0.05;
+  double threads = 2, level = 0.05, budget = 0;
   int json = 0, list = 0, verbose = 0, plan_only = 0, no_cache = 0, o;
   dem_err err = {0};
   opterr = 0;
@@ -221,12 +227,20 @@ int main(int argc, char **argv) {
     case 'B': baseline = optarg; break;
     case 'P': plan_only = 1; break;
     case 'N': no_cache = 1; break;
+    case 'T':
+      if (cli_parse_double("--budget", optarg, 1, 1e7, &budget, &err)) goto usage_error;
+      break;
     case 'h': usage(stdout); return CLI_EXIT_OK;
     case 'V': cli_print_version(prog); return CLI_EXIT_OK;
     default: cli_getopt_error(argv, &err); goto usage_error;
     }
   }
   if (cli_no_operands(argc, argv, &err)) goto usage_error;
+  if (budget > 0 && no_cache) {
+    dem_err_set(&err, DEM_EINVAL, "--budget with --no-run-cache: a budgeted invocation "
+                                  "evaluates the cases from the run cache; drop one of them");
+    goto usage_error;
+  }
   if (list) {
     for (int i = 0; i < vh_ncases; i++)
       printf("%-20s %s (%s)\n", vh_cases[i].name, vh_cases[i].title, vh_cases[i].source);
@@ -261,6 +275,7 @@ int main(int argc, char **argv) {
   h->threads = (int)threads;
   h->nranks = 1;
   h->use_cache = !no_cache;
+  h->budget = budget;
   if (launched_by_mpi()) {
 #ifdef VH_HAVE_MPI
     int provided;
@@ -296,7 +311,7 @@ int main(int argc, char **argv) {
   }
 
   loop_ctx L = {cases, res, 0, json, 0, 0};
-  if (plan_only || h->nranks > 1) {
+  if (plan_only || h->nranks > 1 || h->budget > 0) {
     /* list every bed and run, then (MPI) compute them on all ranks into beds_dir */
     if (vh_distribute(h, run_cases, &L, plan_only, &err)) {
       cli_error(prog, &err);
@@ -305,7 +320,10 @@ int main(int argc, char **argv) {
     memset(res, 0, (size_t)vh_ncases * sizeof *res);
     L.nres = 0;
     if (plan_only || h->rank != 0) return finish(h, res, CLI_EXIT_OK);
-    vh_log(h, "rank 0: every bed and run is computed; evaluating the cases");
+    /* after a --budget, what was not made stays not made (N/A), not made now */
+    h->cache_only = h->budget > 0;
+    vh_log(h, "rank 0: %s; evaluating the cases", h->budget > 0 ? "the budget is spent or "
+           "everything is made" : "every bed and run is computed");
   }
   run_cases(h, &L);
   int nres = L.nres, any_fail = L.any_fail, any_err = L.any_err;

@@ -361,7 +361,10 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
     snprintf(c[2], 48, "%lu", b->seed), snprintf(c[3], 48, "%g", b->mu);
     snprintf(c[4], 48, "%g", b->gamma), snprintf(c[5], 48, "%zu", b->n);
     snprintf(c[6], 48, "%.3f", b->phi), snprintf(c[7], 48, "%.3g", b->dt);
-    if (isfinite(b->prep_s) && b->wall_s < 0.5 * b->prep_s)
+    if (b->skipped) {
+      for (int k = 5; k <= 7; k++) snprintf(c[k], 48, "-");
+      snprintf(c[8], 48, "not made (over the --budget)");
+    } else if (isfinite(b->prep_s) && b->wall_s < 0.5 * b->prep_s)
       snprintf(c[8], 48, "%.0f (earlier)", b->prep_s);
     else snprintf(c[8], 48, "%.0f", b->wall_s);
     snprintf(c[9], 48, "%g", b->kscale);
@@ -454,6 +457,7 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
   json_object_set_new(root, "wall_s", jnum(wall_s));
   json_object_set_new(root, "threads", json_integer(h->threads));
   json_object_set_new(root, "ranks", json_integer(h->nranks));
+  json_object_set_new(root, "budget_s", h->budget > 0 ? json_real(h->budget) : json_null());
   double cost = 0;
   for (int i = 0; i < nres; i++) cost += res[i].cost_s;
   json_object_set_new(root, "cost_s", jnum(cost));
@@ -474,6 +478,8 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
                         jnum(b->wall_s)));
     json_object_set_new(json_array_get(beds, json_array_size(beds) - 1), "prep_s",
                         jnum(b->prep_s));
+    json_object_set_new(json_array_get(beds, json_array_size(beds) - 1), "skipped",
+                        json_boolean(b->skipped));
   }
   for (int i = 0; i < nres; i++) {
     const vh_case_result *r = &res[i];
@@ -503,6 +509,7 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
                             jnum(u->wall_s), "steps", (json_int_t)u->steps, "dt", jnum(u->dt),
                             "samples", (json_int_t)u->n);
       json_object_set_new(j, "cached", json_boolean(u->cached));
+      json_object_set_new(j, "skipped", json_boolean(u->skipped));
       json_object_set_new(j, "threads", json_integer(u->threads));
       json_array_append_new(runs, j);
     }

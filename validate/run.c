@@ -184,6 +184,12 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
     b->prep_s = NAN;
     return h->nbeds++;
   }
+  if (h->cache_only && access(b->path, R_OK) != 0) { /* over the --budget (dist.c) */
+    b->skipped = 1;
+    b->prep_s = b->wall_s = b->phi = b->bed_top = b->dt = NAN;
+    vh_log(h, "bed %s: not prepared (over the --budget): its runs are skipped", name);
+    return h->nbeds++;
+  }
   dem_scene_hooks hk = {progress, 30.0, NULL, 0.0, h};
   double t0 = vh_now();
   dem_scene *sc = NULL;
@@ -368,6 +374,16 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
              r->sH.se);
       return h->nruns - 1;
     }
+  }
+  if (h->cache_only || b->skipped) { /* over the --budget (dist.c): the cases see N/A */
+    r->skipped = 1;
+    r->status = DEM_EINTERRUPTED;
+    snprintf(r->error, sizeof r->error, "not made (over the --budget)");
+    r->sH.mean = r->sp.mean = r->sq.mean = r->sphi.mean = r->sEarly.mean = NAN;
+    r->wall_s = 0.0;
+    h->nruns++;
+    vh_log(h, "run %d: %s: not made (over the --budget)", h->nruns - 1, r->label);
+    return h->nruns - 1;
   }
   r->threads = h->threads;
   dem_scene_config o;

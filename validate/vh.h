@@ -65,6 +65,7 @@ typedef struct vh_bed {
   double kscale;       /* multiplies every stiffness of Tables 6.2/6.3 (stiffness_scale) */
   /* filled in when prepared */
   int ready;
+  int skipped;         /* 1: not prepared, over the --budget (dist.c); its runs are skipped */
   char path[512];      /* scene checkpoint */
   double wall_s;       /* s, wall time of this invocation (preparation or restore) */
   double prep_s;       /* s, wall time of the preparation (NaN: unknown, made elsewhere) */
@@ -91,6 +92,7 @@ typedef struct vh_run {
   int status;          /* DEM_OK or the error */
   char error[320];
   int cached;          /* 1: loaded from the run cache (cache.c), not run by this invocation */
+  int skipped;         /* 1: not made, over the --budget (dist.c): its criteria are N/A */
   int threads;         /* OpenMP threads of the run that made it */
   double wall_s;       /* s, wall time of the run (when it was made) */
   long steps;
@@ -154,6 +156,10 @@ typedef struct vh {
   int plan;              /* 1: cases only list their beds and runs (nothing is prepared) */
   int rank, nranks;      /* MPI rank and size (0, 1 without MPI) */
   int use_cache;         /* runs are kept in and reused from beds_dir (cache.c) */
+  double budget;         /* s, --budget: wall time from t0 after which no bed or run is
+                            started (0: none; dist.c) */
+  int cache_only;        /* 1: a bed or run not in beds_dir is skipped, not made (the
+                            evaluation after a --budget invocation) */
 } vh;
 
 typedef struct vh_case {
@@ -197,7 +203,9 @@ void vh_reset(vh *h);
 
 /* Distribution (dist.c): list every bed and run of the selected cases (h->plan), then
  * prepare the beds and make the runs on the MPI ranks (longest first), each into beds_dir;
- * afterwards rank 0 evaluates the cases from the cache. Returns DEM_OK or an error. */
+ * afterwards rank 0 evaluates the cases from the cache. With h->budget > 0 every rank makes
+ * its items cheapest first and skips those whose estimate would end past the budget.
+ * Returns DEM_OK or an error. */
 typedef int (*vh_cases_fn)(vh *h, void *user);
 int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_err *err);
 
