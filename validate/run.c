@@ -369,9 +369,13 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
     if (vh_cache_load(h, cpath, b->path, r) == 0) {
       h->nruns++;
       run_stats(h, r);
-      vh_log(h, "run %d: %s: cached (%s; made in %.0f s with %d threads): H plateau %.0f +- "
-             "%.0f Pa", h->nruns - 1, r->label, cpath, r->wall_s, r->threads, r->sH.mean,
-             r->sH.se);
+      if (r->status != DEM_OK) /* a run the engine's checks stopped: no plateau to show */
+        vh_log(h, "run %d: %s: cached (%s; made in %.0f s with %d threads): FAILED: %s",
+               h->nruns - 1, r->label, cpath, r->wall_s, r->threads, r->error);
+      else
+        vh_log(h, "run %d: %s: cached (%s; made in %.0f s with %d threads): H plateau %.0f +- "
+               "%.0f Pa", h->nruns - 1, r->label, cpath, r->wall_s, r->threads, r->sH.mean,
+               r->sH.se);
       return h->nruns - 1;
     }
   }
