@@ -271,6 +271,16 @@ static void machine(char *b, size_t n) {
     snprintf(b, n, "%ld cores", cpus);
 }
 
+/* The statistics of a run, or none (NaN: "-" in the tables, null in the JSON) for a run
+ * that failed or was not made: its zeroed fields are not a hardness of 0. */
+static dem_series_stats run_stats_of(const vh_run *u, const dem_series_stats *s) {
+  if (u->status == DEM_OK) return *s;
+  dem_series_stats none;
+  memset(&none, 0, sizeof none);
+  none.mean = none.se = none.sd = none.slope = none.n_eff = NAN;
+  return none;
+}
+
 static void fmt_stats(char *b, size_t n, const dem_series_stats *s, double scale) {
   if (isfinite(s->mean))
     snprintf(b, n, "%.3g +- %.2g", s->mean * scale, s->se * scale);
@@ -391,11 +401,14 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
       const vh_run *u = &h->runs[r->runs[k]];
       char c[10][96];
       snprintf(c[0], 96, "%s", r->labels[k]);
-      fmt_stats(c[1], 96, &u->sH, 1e-3);
-      snprintf(c[2], 96, "%.3g", u->sH.sd / 1e3);
-      fmt_stats(c[3], 96, &u->sp, 1e-3);
-      fmt_stats(c[4], 96, &u->sq, 1e-3);
-      fmt_stats(c[5], 96, &u->sphi, 1.0);
+      const dem_series_stats sH = run_stats_of(u, &u->sH), sp = run_stats_of(u, &u->sp),
+                             sq = run_stats_of(u, &u->sq), sphi = run_stats_of(u, &u->sphi);
+      fmt_stats(c[1], 96, &sH, 1e-3);
+      if (isfinite(sH.sd)) snprintf(c[2], 96, "%.3g", sH.sd / 1e3);
+      else snprintf(c[2], 96, "-");
+      fmt_stats(c[3], 96, &sp, 1e-3);
+      fmt_stats(c[4], 96, &sq, 1e-3);
+      fmt_stats(c[5], 96, &sphi, 1.0);
       snprintf(c[6], 96, "%.2f", u->surface_sd / 1e-3);
       snprintf(c[7], 96, "%ld", u->steps);
       snprintf(c[8], 96, "%.0f%s", u->wall_s, u->cached ? " (cached)" : "");
@@ -502,10 +515,12 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
     }
     for (int k = 0; k < r->nruns; k++) {
       const vh_run *u = &h->runs[r->runs[k]];
+      const dem_series_stats sH = run_stats_of(u, &u->sH), sp = run_stats_of(u, &u->sp),
+                             sq = run_stats_of(u, &u->sq), sphi = run_stats_of(u, &u->sphi);
       json_t *j = json_pack("{s:s,s:s,s:o,s:o,s:o,s:o,s:o,s:o,s:I,s:o,s:I}", "label",
                             r->labels[k], "status", u->status ? u->error : "ok", "x",
-                            jnum(r->x[k]), "H", jstats(&u->sH), "bin_p", jstats(&u->sp),
-                            "bin_q", jstats(&u->sq), "bin_phi", jstats(&u->sphi), "wall_s",
+                            jnum(r->x[k]), "H", jstats(&sH), "bin_p", jstats(&sp),
+                            "bin_q", jstats(&sq), "bin_phi", jstats(&sphi), "wall_s",
                             jnum(u->wall_s), "steps", (json_int_t)u->steps, "dt", jnum(u->dt),
                             "samples", (json_int_t)u->n);
       json_object_set_new(j, "cached", json_boolean(u->cached));
