@@ -17,9 +17,11 @@
  * Without MPI (not built with it, or not started by mpirun) there is one rank and the plan is
  * used by --plan, which prints it, and by --budget.
  *
- * --budget S (seconds of wall time from the start): every rank makes its items cheapest
- * first, and starts one only if its estimate, scaled by measured / estimated over the items
- * it has made so far, ends within S; the rest are skipped. Rank 0 then evaluates the cases
+ * --budget S (seconds of wall time from the start): every rank makes its items case by case,
+ * the case that lacks the least (estimated) first (budget_order), and starts an item only if
+ * its estimate, scaled by measured / estimated over the items it has made so far, ends
+ * within S; the rest are skipped. One rank makes a case's beds and then its runs before the
+ * next case; several ranks keep the two phases (a run may need a bed another rank makes). Rank 0 then evaluates the cases
  * from the cache only (h->cache_only): a skipped run is a placeholder whose criteria are N/A
  * (cases.c), so a time-limited invocation reports every criterion it could decide, and the
  * next invocation over the same --beds folder goes on from what this one made.
@@ -109,13 +111,19 @@ static double makespan(const double *cost, int n, int nranks) {
   return m;
 }
 
-/* 1 if the run is in the cache (with its wall time), 0 if not. */
-static int run_cached(const vh *h, const vh_bed *b, const vh_indent *in, char *cp, size_t len,
-                      double *wall_s) {
+/* The cache file of a run on a listed bed. */
+static void run_cache_path(const vh *h, const vh_bed *b, const vh_indent *in, char *cp,
+                           size_t len) {
   char bn[256];
   snprintf(bn, sizeof bn, "%s", strrchr(b->path, '/') + 1);
   bn[strlen(bn) - 3] = '\0'; /* ".h5" */
   vh_cache_path(h, bn, in, cp, len);
+}
+
+/* 1 if the run is in the cache (with its wall time), 0 if not. */
+static int run_cached(const vh *h, const vh_bed *b, const vh_indent *in, char *cp, size_t len,
+                      double *wall_s) {
+  run_cache_path(h, b, in, cp, len);
   vh_run r;
   memset(&r, 0, sizeof r);
   int have = access(b->path, R_OK) == 0 && vh_cache_load(h, cp, b->path, &r) == 0;
@@ -143,19 +151,71 @@ static void budget_skip(const vh *h, const char *what, int i, double cost, doubl
          "the --budget of %.0f s", h->rank, what, i, cost, end, h->budget);
 }
 
+/* --budget: the order in which the items (0..nb-1 beds, nb..nb+nr-1 runs) are made. A case
+ * is decided only when every run it needs is made (a part-made case is N/A, cases.c), so the
+ * cases are taken by the estimated cost of what each still lacks, cheapest first, and what a
+ * chosen case lacks then counts as made for the cases after it (greedy: the most cases
+ * decided within the time); within a case its beds come first, then its runs, each cheapest
+ * first. Items already made (done) come first and cost nothing. (Every item cheapest first
+ * regardless of its cases, the order of 721286c, spreads the budget over the cheap runs of
+ * every case: at thesis scale the gamma* 0.1 run that every criterion of case 10 needs came
+ * last.) cord[0..*ncord) receives the case order, cinc[] what each case added (s, estimated)
+ * and cfirst[] where its items start in ord (cfirst[*ncord] = the end). */
+static void budget_order(int nb, int nr, const double *cost, const unsigned *mask,
+                         const int *done, int ncases, int *ord, int *cord, double *cinc,
+                         int *cfirst, int *ncord) {
+  const int n = nb + nr;
+  int taken[VH_MAX_BEDS + VH_MAX_RUNS] = {0}, chosen[32] = {0}, m = 0, nc = 0;
+  if (ncases > 32) ncases = 32;
+  for (int i = 0; i < n; i++)
+    if (done[i]) taken[i] = 1, ord[m++] = i;
+  for (;;) {
+    int best = -1;
+    double bc = INFINITY;
+    for (int c = 0; c < ncases; c++) {
+      if (chosen[c]) continue;
+      double sum = 0;
+      for (int i = 0; i < n; i++)
+        if (!taken[i] && (mask[i] >> c & 1u)) sum += cost[i];
+      if (sum < bc) bc = sum, best = c; /* ties: the earlier case */
+    }
+    /* best == -1 after the last case: what no case claimed (nothing, as every bed and run
+     * is asked for by a case) is taken by the same loop with every item eligible */
+    if (best >= 0) chosen[best] = 1, cord[nc] = best, cinc[nc] = bc, cfirst[nc++] = m;
+    for (int part = 0; part < 2; part++) { /* beds, then runs */
+      for (;;) {
+        int k = -1;
+        for (int i = part ? nb : 0; i < (part ? n : nb); i++)
+          if (!taken[i] && (best < 0 || (mask[i] >> best & 1u)) && (k < 0 || cost[i] < cost[k]))
+            k = i;
+        if (k < 0) break;
+        taken[k] = 1, ord[m++] = k;
+      }
+    }
+    if (best < 0) break;
+  }
+  cfirst[nc] = m;
+  *ncord = nc;
+}
+
 int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_err *err) {
   h->plan = 1;
   run_cases(h, user);
   h->plan = 0;
-  const int nb = h->nbeds, nr = h->nruns;
+  const int nb = h->nbeds, nr = h->nruns, n = nb + nr;
   vh_bed *beds = calloc((size_t)nb + 1, sizeof *beds);
   vh_indent *inds = calloc((size_t)nr + 1, sizeof *inds);
-  int *rbed = calloc((size_t)nr + 1, sizeof *rbed), *owner = calloc((size_t)(nb + nr) + 1,
-                                                                     sizeof *owner);
-  double *cost = calloc((size_t)(nb + nr) + 1, sizeof *cost);
-  if (!beds || !inds || !rbed || !owner || !cost) {
-    free(beds), free(inds), free(rbed), free(owner), free(cost);
-    return dem_err_set(err, DEM_ENOMEM, "dem-validate: out of memory");
+  int *rbed = calloc((size_t)nr + 1, sizeof *rbed), *owner = calloc((size_t)n + 1, sizeof *owner);
+  int *done = calloc((size_t)n + 1, sizeof *done), *ord = calloc((size_t)n + 1, sizeof *ord);
+  double *cost = calloc((size_t)n + 1, sizeof *cost), *rwall = calloc((size_t)nr + 1,
+                                                                       sizeof *rwall);
+  unsigned *mask = calloc((size_t)n + 1, sizeof *mask);
+  int cord[32], cfirst[33], ncord = 0;
+  double cinc[32];
+  int rc = DEM_OK;
+  if (!beds || !inds || !rbed || !owner || !done || !ord || !cost || !rwall || !mask) {
+    rc = dem_err_set(err, DEM_ENOMEM, "dem-validate: out of memory");
+    goto out;
   }
   /* the constants are for 2 threads; one thread is 1.9x slower (docs/benchmarks.md); beyond
    * 2 threads the scaling is not measured here and the 2-thread costs are used */
@@ -163,13 +223,27 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
   for (int i = 0; i < nb; i++) {
     beds[i] = h->beds[i];
     cost[i] = tf * bed_cost(&beds[i]);
+    mask[i] = beds[i].cases;
   }
   for (int j = 0; j < nr; j++) {
     inds[j] = h->runs[j].ind;
     rbed[j] = h->runs[j].bed;
     cost[nb + j] = tf * run_cost(h, &beds[rbed[j]], &inds[j]);
+    mask[nb + j] = h->runs[j].cases;
   }
   vh_reset(h);
+  /* what is already made: a bed in beds_dir, a run in the cache (read only when it matters) */
+  for (int i = 0; i < nb; i++) done[i] = access(beds[i].path, R_OK) == 0;
+  for (int j = 0; j < nr; j++) {
+    char cp[700];
+    rwall[j] = NAN;
+    if (print_plan || h->budget > 0)
+      done[nb + j] = run_cached(h, &beds[rbed[j]], &inds[j], cp, sizeof cp, &rwall[j]);
+  }
+  if (h->budget > 0)
+    budget_order(nb, nr, cost, mask, done, h->ncases, ord, cord, cinc, cfirst, &ncord);
+  else
+    for (int i = 0; i < n; i++) ord[i] = i;
 
   if (print_plan) {
     /* what this invocation would do, and what is already in beds_dir */
@@ -177,27 +251,25 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
     printf("plan of --tier %s: %d beds, %d runs (folder %s)\n", h->tier->name, nb, nr,
            h->beds_dir);
     for (int i = 0; i < nb; i++) {
-      int have = access(beds[i].path, R_OK) == 0;
       double prep = vh_bed_info_load(&beds[i]);
       printf("  bed %2d  %-62s %s", i, strrchr(beds[i].path, '/') + 1,
-             have ? "prepared" : "to prepare");
-      if (have && isfinite(prep)) printf(" (%.0f s)", prep);
-      else if (!have) printf(" (est. %.0f s)", cost[i]);
+             done[i] ? "prepared" : "to prepare");
+      if (done[i] && isfinite(prep)) printf(" (%.0f s)", prep);
+      else if (!done[i]) printf(" (est. %.0f s)", cost[i]);
       printf("\n");
       total += cost[i];
-      if (!have) todo += cost[i];
+      if (!done[i]) todo += cost[i];
     }
     for (int j = 0; j < nr; j++) {
       char cp[700];
-      double wall;
-      int have = run_cached(h, &beds[rbed[j]], &inds[j], cp, sizeof cp, &wall);
+      run_cache_path(h, &beds[rbed[j]], &inds[j], cp, sizeof cp);
       printf("  run %2d  bed %2d  %-52s %s", j, rbed[j], strrchr(cp, '/') + 5,
-             have ? "cached" : "to run");
-      if (have) printf(" (%.0f s)", wall);
+             done[nb + j] ? "cached" : "to run");
+      if (done[nb + j]) printf(" (%.0f s)", rwall[j]);
       else printf(" (est. %.0f s)", cost[nb + j]);
       printf("\n");
       total += cost[nb + j];
-      if (!have) todo += cost[nb + j];
+      if (!done[nb + j]) todo += cost[nb + j];
     }
     printf("estimated cost: %.0f s of which %.0f s not yet done (one process, %d threads; the "
            "constants are from a 2-core Xeon with 2 threads, see validate/dist.c%s)\n", total,
@@ -207,84 +279,95 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
     for (int R = 1; R <= 16; R *= 2)
       printf(" R=%d %.0f s%s", R, makespan(cost, nb, R) + makespan(cost + nb, nr, R),
              R < 16 ? "," : "\n");
-    free(beds), free(inds), free(rbed), free(owner), free(cost);
-    return DEM_OK;
+    if (h->budget > 0) {
+      printf("order under --budget %.0f (cases by what each lacks, cheapest first; within a "
+             "case beds, then runs, cheapest first):\n", h->budget);
+      for (int c = 0; c < ncord; c++) {
+        printf("  %d. %s (+%.0f s est.):", c + 1,
+               cord[c] < VH_MAX_CASES && h->case_names[cord[c]] ? h->case_names[cord[c]] : "?",
+               cinc[c]);
+        if (cfirst[c] == cfirst[c + 1]) printf(" nothing to make");
+        for (int k = cfirst[c]; k < cfirst[c + 1]; k++)
+          printf(" %s %d%s", ord[k] < nb ? "bed" : "run", ord[k] < nb ? ord[k] : ord[k] - nb,
+                 k + 1 < cfirst[c + 1] ? "," : "");
+        printf("\n");
+      }
+    }
+    goto out;
+  }
+  if (h->budget > 0 && h->rank == 0) {
+    char line[1024];
+    size_t len = 0;
+    for (int c = 0; c < ncord && len < sizeof line; c++)
+      len += (size_t)snprintf(line + len, sizeof line - len, "%s%s (+%.0f s est.)",
+                              c ? ", " : "", cord[c] < VH_MAX_CASES && h->case_names[cord[c]]
+                                                 ? h->case_names[cord[c]] : "?", cinc[c]);
+    vh_log(h, "--budget %.0f s: the cases in the order of what each lacks: %s", h->budget,
+           ncord ? line : "(none)");
   }
 
-  /* Each rank makes its items in plan order, or with a --budget cheapest first (the most
-   * items, hence the most criteria, within the time). */
-  int *ord = malloc(((size_t)(nb + nr) + 1) * sizeof *ord);
-  if (!ord) {
-    free(beds), free(inds), free(rbed), free(owner), free(cost);
-    return dem_err_set(err, DEM_ENOMEM, "dem-validate: out of memory");
-  }
+  /* Each rank makes its items (the balanced assignment) in the plan order, or with a --budget
+   * in the order above. One rank makes them in one pass (a case's beds, then its runs);
+   * several ranks make the beds, wait for one another, then make the runs. */
   budget_acc acc = {0, 0};
   int nfail = 0, nskip = 0;
-  /* phase 1: beds */
   assign(cost, nb, h->nranks, owner);
-  if (h->budget > 0) sort_by_cost(cost, nb, 0, ord);
-  else for (int i = 0; i < nb; i++) ord[i] = i;
-  for (int k = 0; k < nb; k++) {
-    const int i = ord[k];
-    if (owner[i] != h->rank) continue;
-    const int have = access(beds[i].path, R_OK) == 0;
-    double end;
-    if (h->budget > 0 && !have && !budget_fits(h, &acc, cost[i], &end)) {
-      budget_skip(h, "bed", i, cost[i], end);
-      nskip++;
-      continue;
-    }
-    dem_err e = {0};
-    const double t0 = vh_now();
-    if (vh_bed_get(h, &beds[i], &e) < 0) {
-      vh_log(h, "rank %d: bed %d failed: %s", h->rank, i, e.msg);
-      nfail++;
-    } else if (!have) {
-      acc.est += cost[i];
-      acc.spent += vh_now() - t0;
-    }
-  }
-  wait_all(h);
-  vh_reset(h);
-  /* phase 2: runs (vh_run_get writes each into the cache) */
   assign(cost + nb, nr, h->nranks, owner + nb);
-  if (h->budget > 0) sort_by_cost(cost + nb, nr, 0, ord);
-  else for (int j = 0; j < nr; j++) ord[j] = j;
-  for (int k = 0; k < nr; k++) {
-    const int j = ord[k];
-    if (owner[nb + j] != h->rank) continue;
-    char cp[700];
-    double wall, end;
-    const int have = h->budget > 0 && run_cached(h, &beds[rbed[j]], &inds[j], cp, sizeof cp,
-                                                  &wall);
-    if (h->budget > 0 && !have) {
-      if (access(beds[rbed[j]].path, R_OK) != 0) { /* its bed was skipped, or failed */
-        vh_log(h, "rank %d: run %d not made: its bed was not prepared", h->rank, j);
-        nskip++;
+  const int passes = h->nranks > 1 ? 2 : 1;
+  for (int pass = 0; pass < passes; pass++) {
+    for (int k = 0; k < n; k++) {
+      const int i = ord[k];
+      if (passes == 2 && (i < nb) != (pass == 0)) continue;
+      if (owner[i] != h->rank) continue;
+      const int have = done[i];
+      double end;
+      dem_err e = {0};
+      const double t0 = vh_now();
+      if (i < nb) { /* a bed */
+        if (h->budget > 0 && !have && !budget_fits(h, &acc, cost[i], &end)) {
+          budget_skip(h, "bed", i, cost[i], end);
+          nskip++;
+          continue;
+        }
+        if (vh_bed_get(h, &beds[i], &e) < 0) {
+          vh_log(h, "rank %d: bed %d failed: %s", h->rank, i, e.msg);
+          nfail++;
+        } else if (!have) {
+          acc.est += cost[i];
+          acc.spent += vh_now() - t0;
+        }
         continue;
       }
-      if (!budget_fits(h, &acc, cost[nb + j], &end)) {
-        budget_skip(h, "run", j, cost[nb + j], end);
-        nskip++;
-        continue;
+      const int j = i - nb; /* a run */
+      if (h->budget > 0 && !have) {
+        if (access(beds[rbed[j]].path, R_OK) != 0) { /* its bed was skipped, or failed */
+          vh_log(h, "rank %d: run %d not made: its bed was not prepared", h->rank, j);
+          nskip++;
+          continue;
+        }
+        if (!budget_fits(h, &acc, cost[i], &end)) {
+          budget_skip(h, "run", j, cost[i], end);
+          nskip++;
+          continue;
+        }
+      }
+      int r = vh_run_get(h, &beds[rbed[j]], &inds[j], &e);
+      if (r < 0 || h->runs[r].status != DEM_OK) nfail++;
+      if (!have) {
+        acc.est += cost[i];
+        acc.spent += vh_now() - t0;
       }
     }
-    dem_err e = {0};
-    const double t0 = vh_now();
-    int r = vh_run_get(h, &beds[rbed[j]], &inds[j], &e);
-    if (r < 0 || h->runs[r].status != DEM_OK) nfail++;
-    if (!have) {
-      acc.est += cost[nb + j];
-      acc.spent += vh_now() - t0;
-    }
+    wait_all(h);
+    vh_reset(h);
   }
-  wait_all(h);
-  vh_reset(h);
-  free(ord), free(beds), free(inds), free(rbed), free(owner), free(cost);
   if (nfail)
     vh_log(h, "rank %d: %d of its beds or runs failed (the cases report them)", h->rank, nfail);
   if (nskip)
     vh_log(h, "rank %d: %d of its beds and runs not made within the --budget (the cases report "
            "their criteria as N/A)", h->rank, nskip);
-  return DEM_OK;
+out:
+  free(beds), free(inds), free(rbed), free(owner), free(done), free(ord), free(cost);
+  free(rwall), free(mask);
+  return rc;
 }

@@ -51,10 +51,11 @@ static void usage(FILE *f) {
           "             the --beds folder, and an estimate of the rest; compute nothing\n"
           "  --no-run-cache  do not reuse runs kept in the --beds folder (they are kept\n"
           "             there after every run, keyed by bed, indenter and this executable)\n"
-          "  --budget S make the beds and runs cheapest first and start none whose estimate\n"
-          "             (scaled by how long the ones made so far took) would end more than S\n"
-          "             seconds after the start; the criteria that need what was not made\n"
-          "             are N/A, and a later invocation over the same --beds goes on\n",
+          "  --budget S make the beds and runs case by case, the case that lacks the least\n"
+          "             first, and start none whose estimate (scaled by how long the ones\n"
+          "             made so far took) would end more than S seconds after the start; the\n"
+          "             criteria that need what was not made are N/A, and a later invocation\n"
+          "             over the same --beds goes on (with --plan: prints that order)\n",
           prog, prog);
 }
 
@@ -131,6 +132,9 @@ static int run_cases(vh *h, void *user) {
     if (sel == 0 || (sel < 0 && !(t->cases_mask & (1 << i)))) continue;
     vh_case_result *r = &L->res[L->nres++];
     memset(r, 0, sizeof *r);
+    h->cur_case = L->nres - 1;
+    if (h->cur_case < VH_MAX_CASES) h->case_names[h->cur_case] = vh_cases[i].name;
+    h->ncases = L->nres;
     r->name = vh_cases[i].name;
     r->title = vh_cases[i].title;
     r->source = vh_cases[i].source;
@@ -163,6 +167,7 @@ static int run_cases(vh *h, void *user) {
     dem_err e2 = {0};
     if (vh_report_write(h, L->res, L->nres, vh_now() - h->t0, &e2)) cli_error(prog, &e2);
   }
+  h->cur_case = -1;
   return DEM_OK;
 }
 

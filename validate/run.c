@@ -162,15 +162,24 @@ static int same_bed(const vh_bed *a, const vh_bed *b) {
          a->gamma == b->gamma && a->kscale == b->kscale;
 }
 
+/* The plan's mark of the case being run on a bed or run it needs (none past 32 cases). */
+static unsigned case_bit(const vh *h) {
+  return h->cur_case >= 0 && h->cur_case < 32 ? 1u << h->cur_case : 0u;
+}
+
 int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
   for (int i = 0; i < h->nbeds; i++)
-    if (same_bed(&h->beds[i], spec)) return i;
+    if (same_bed(&h->beds[i], spec)) {
+      h->beds[i].cases |= case_bit(h);
+      return i;
+    }
   if (h->nbeds == VH_MAX_BEDS) {
     dem_err_set(err, DEM_ERANGE, "dem-validate: more than %d beds", VH_MAX_BEDS);
     return -1;
   }
   vh_bed *b = &h->beds[h->nbeds];
   *b = *spec;
+  b->cases = case_bit(h);
   char name[256];
   bed_name(h, b, name, sizeof name);
   if (mkdir_p(h->beds_dir)) {
@@ -336,7 +345,10 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   int bi = vh_bed_get(h, bspec, err);
   if (bi < 0) return -1;
   for (int i = 0; i < h->nruns; i++)
-    if (h->runs[i].bed == bi && same_indent(&h->runs[i].ind, ind)) return i;
+    if (h->runs[i].bed == bi && same_indent(&h->runs[i].ind, ind)) {
+      h->runs[i].cases |= case_bit(h);
+      return i;
+    }
   if (h->nruns == VH_MAX_RUNS) {
     dem_err_set(err, DEM_ERANGE, "dem-validate: more than %d runs", VH_MAX_RUNS);
     return -1;
@@ -347,6 +359,7 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   memset(r, 0, sizeof *r);
   r->bed = bi;
   r->ind = *ind;
+  r->cases = case_bit(h);
   snprintf(r->label, sizeof r->label, "bed %g d, %s %g d, gamma* %g, kn x%g, mu_i %g, dt x%g",
            b->bed, shape_name(ind->shape), ind->D, ind->gamma_star, ind->kn_scale, ind->mu_ind,
            ind->dt_scale);

@@ -26,6 +26,7 @@
 #define VH_MAX_BEDS 24
 #define VH_MAX_CHECKS 8
 #define VH_MAX_CASE_RUNS 12
+#define VH_MAX_CASES 16
 
 /* The scale of a tier (lengths in d, rates as gamma* = gamma_dot sqrt(d/g)). */
 typedef struct vh_tier {
@@ -72,6 +73,7 @@ typedef struct vh_bed {
   size_t n;            /* particles */
   double phi, bed_top; /* -, m after unloading */
   double dt;           /* s */
+  unsigned cases;      /* plan: bit k set if the k-th selected case needs the bed (dist.c) */
 } vh_bed;
 
 /* An indentation on a bed. */
@@ -107,6 +109,7 @@ typedef struct vh_run {
   dem_series_stats sH, sp, sq, sphi;
   int have_stress;
   dem_series_stats sEarly; /* H over the early window */
+  unsigned cases;      /* plan: bit k set if the k-th selected case needs the run (dist.c) */
 } vh_run;
 
 typedef enum { VH_PASS = 0, VH_FAIL = 1, VH_ERROR = 2, VH_NA = 3 } vh_status;
@@ -160,6 +163,10 @@ typedef struct vh {
                             started (0: none; dist.c) */
   int cache_only;        /* 1: a bed or run not in beds_dir is skipped, not made (the
                             evaluation after a --budget invocation) */
+  int cur_case;          /* index of the selected case being run (-1: none); the plan
+                            records which cases need each bed and run (--budget order) */
+  int ncases;            /* selected cases so far, and their names */
+  const char *case_names[VH_MAX_CASES];
 } vh;
 
 typedef struct vh_case {
