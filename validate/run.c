@@ -341,6 +341,16 @@ void vh_reset(vh *h) {
   h->nbeds = 0;
 }
 
+/* A run that is listed but not made (the plan, or over the --budget): status
+ * DEM_EINTERRUPTED and no statistics, so the cases see it as unavailable. Its index. */
+static int run_placeholder(vh *h, vh_run *r, const char *why) {
+  r->status = DEM_EINTERRUPTED;
+  snprintf(r->error, sizeof r->error, "%s", why);
+  r->sH.mean = r->sp.mean = r->sq.mean = r->sphi.mean = r->sEarly.mean = NAN;
+  r->wall_s = 0.0;
+  return h->nruns++;
+}
+
 int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   int bi = vh_bed_get(h, bspec, err);
   if (bi < 0) return -1;
@@ -367,13 +377,8 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
     size_t len = strlen(r->label);
     snprintf(r->label + len, sizeof r->label - len, ", k x%g", b->kscale);
   }
-  if (h->plan) { /* listed, not run: a placeholder the cases see as not (yet) available */
-    r->status = DEM_EINTERRUPTED;
-    snprintf(r->error, sizeof r->error, "planned");
-    r->sH.mean = r->sp.mean = r->sq.mean = r->sphi.mean = r->sEarly.mean = NAN;
-    h->nruns++;
-    return h->nruns - 1;
-  }
+  if (h->plan) /* listed, not run: a placeholder the cases see as not (yet) available */
+    return run_placeholder(h, r, "planned");
   char cpath[700] = "";
   if (h->use_cache) {
     char bname[256];
@@ -394,13 +399,8 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   }
   if (h->cache_only || b->skipped) { /* over the --budget (dist.c): the cases see N/A */
     r->skipped = 1;
-    r->status = DEM_EINTERRUPTED;
-    snprintf(r->error, sizeof r->error, "not made (over the --budget)");
-    r->sH.mean = r->sp.mean = r->sq.mean = r->sphi.mean = r->sEarly.mean = NAN;
-    r->wall_s = 0.0;
-    h->nruns++;
-    vh_log(h, "run %d: %s: not made (over the --budget)", h->nruns - 1, r->label);
-    return h->nruns - 1;
+    vh_log(h, "run %d: %s: not made (over the --budget)", h->nruns, r->label);
+    return run_placeholder(h, r, "not made (over the --budget)");
   }
   r->threads = h->threads;
   dem_scene_config o;
