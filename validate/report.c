@@ -493,6 +493,8 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
                         jnum(b->prep_s));
     json_object_set_new(json_array_get(beds, json_array_size(beds) - 1), "skipped",
                         json_boolean(b->skipped));
+    json_object_set_new(json_array_get(beds, json_array_size(beds) - 1), "gamma_star",
+                        jnum(b->gamma_star));
   }
   for (int i = 0; i < nres; i++) {
     const vh_case_result *r = &res[i];

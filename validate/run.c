@@ -93,7 +93,13 @@ vh_bed vh_bed_ref(const vh *h, int replicate) {
   b.mu = 0.15;   /* Table 6.3 */
   b.gamma = 2.0; /* Table 6.3, J/m^2 */
   b.kscale = h->tier->stiffness_scale;
+  b.gamma_star = h->tier->gamma_star;
   return b;
+}
+
+double vh_gamma_star_of_bed(const vh *h, double bed) {
+  const vh_tier *t = h->tier;
+  return bed > t->bed ? t->gamma_star * t->bed / bed : t->gamma_star;
 }
 
 vh_bed vh_bed_rate(const vh *h) {
@@ -116,7 +122,7 @@ static int bed_config(const vh *h, const vh_bed *b, dem_scene_config *c, dem_err
   c->seed = b->seed;
   c->fill_fraction = t->fill_fraction;
   c->settle_max_time = 2.0;
-  c->strain_rate = rate_of(t->gamma_star);
+  c->strain_rate = rate_of(b->gamma_star);
   c->stiffness_scale = b->kscale;
   c->dt_factor = t->dt_factor;
   c->threads = h->threads;
@@ -132,7 +138,7 @@ static int bed_config(const vh *h, const vh_bed *b, dem_scene_config *c, dem_err
 static void bed_name(const vh *h, const vh_bed *b, char *buf, size_t len) {
   const vh_tier *t = h->tier;
   snprintf(buf, len, "bed%g_die%g_seed%lu_mu%g_gamma%g_k%g_dt%g_g%g_f%g", b->bed, b->die,
-           b->seed, b->mu, b->gamma, b->kscale, t->dt_factor, t->gamma_star,
+           b->seed, b->mu, b->gamma, b->kscale, t->dt_factor, b->gamma_star,
            t->fill_fraction);
 }
 
@@ -159,7 +165,7 @@ static void progress(const char *stage, double t, double frac, double eta, void 
 
 static int same_bed(const vh_bed *a, const vh_bed *b) {
   return a->bed == b->bed && a->die == b->die && a->seed == b->seed && a->mu == b->mu &&
-         a->gamma == b->gamma && a->kscale == b->kscale;
+         a->gamma == b->gamma && a->kscale == b->kscale && a->gamma_star == b->gamma_star;
 }
 
 /* The plan's mark of the case being run on a bed or run it needs (none past 32 cases). */

@@ -64,6 +64,9 @@ typedef struct vh_bed {
   double mu;           /* inter-particle sliding friction */
   double gamma;        /* J/m^2, inter-particle interface energy */
   double kscale;       /* multiplies every stiffness of Tables 6.2/6.3 (stiffness_scale) */
+  double gamma_star;   /* rate of its consolidation and unloading (piston speed = gamma_dot x
+                          bed top): the tier's, lower for a bed deeper than the reference
+                          (vh_gamma_star_of_bed) */
   /* filled in when prepared */
   int ready;
   int skipped;         /* 1: not prepared, over the --budget (dist.c); its runs are skipped */
@@ -187,6 +190,11 @@ vh_bed vh_bed_ref(const vh *h, int replicate);
 /* The reference bed at the tier's stiffness scale for high rates (cases 10, 11). */
 vh_bed vh_bed_rate(const vh *h);
 vh_indent vh_indent_ref(const vh *h);
+/* gamma* of the consolidation and indentation of a bed of height bed [d]: the tier's, or
+ * for a bed deeper than the reference the tier's x reference / bed, so that no bed is
+ * pressed faster in m/s than the reference bed, whose speed the speed-versus-accuracy study
+ * validated (docs/validation.md, "Bed height"). */
+double vh_gamma_star_of_bed(const vh *h, double bed);
 /* Index of the bed (prepared on first use), or -1 with err set. */
 int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err);
 /* Index of the run (run on first use; identical runs are shared between cases). A failed
