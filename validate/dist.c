@@ -21,15 +21,19 @@
  * the case that lacks the least (estimated) first (budget_order), and starts an item only if
  * its estimate, scaled by measured / estimated over the items it has made so far, ends
  * within S; the rest are skipped. One rank makes a case's beds and then its runs before the
- * next case; several ranks keep the two phases (a run may need a bed another rank makes). Rank 0 then evaluates the cases
- * from the cache only (h->cache_only): a skipped run is a placeholder whose criteria are N/A
- * (cases.c), so a time-limited invocation reports every criterion it could decide, and the
- * next invocation over the same --beds folder goes on from what this one made.
+ * next case; several ranks keep the two phases (a run may need a bed another rank makes).
+ * Rank 0 then evaluates the cases from the cache only (h->cache_only): a skipped run is a
+ * placeholder whose criteria are N/A (cases.c), so a time-limited invocation reports every
+ * criterion it could decide, and the next invocation over the same --beds folder goes on
+ * from what this one made.
  *
  * Cost estimates (s, for the order and the --plan table only; measured on the 2-core Xeon of
- * docs/validation.md with 2 threads, x1.9 for one thread: the 20 d bed in the 45 d die at x0.01 454 s, the 16 d
- * sphere to h/r 0.5 at gamma* 0.1 195 s): a bed costs ~ die^2 bed sqrt(k) (particles x steps
- * of fill, settle and consolidation, dt ~ 1/sqrt(k)); a run costs particles x steps ~
+ * docs/validation.md with 2 threads, x1.9 for one thread: the 20 d bed in the 45 d die at
+ * x0.01 454 s, the 16 d sphere to h/r 0.5 at gamma* 0.1 195 s): a bed costs ~ die^2 bed
+ * sqrt(k) (particles x steps of fill, settle and consolidation, dt ~ 1/sqrt(k); the slower
+ * piston of a bed deeper than the reference is not counted: the 50 d bed at gamma* 0.04
+ * took 2837 s on the AMD VM against 1135 s estimated, the usual ~2.5x of that machine, as
+ * settling dominates); a run costs particles x steps ~
  * die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r sqrt(k) / (gamma* dt_scale).
  */
 #include <math.h>
