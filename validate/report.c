@@ -340,7 +340,9 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
              "every stiffness scaled by %g (by %g on the beds of the high-rate cases 10 and "
              "11), die %g d, reference bed %g d, reference sphere "
              "%g d, pre-consolidation 10 kPa, all rates gamma* = %g (gamma_dot = v / h_bed) "
-             "unless varied, dt = %g sqrt(m_min / k_max). Plateau window h/r %.2f-%.2f; "
+             "unless varied, except that a bed deeper than the reference is consolidated and "
+             "indented at the reference bed's speed in m/s (gamma* x reference / bed; the "
+             "bed table lists it), dt = %g sqrt(m_min / k_max). Plateau window h/r %.2f-%.2f; "
              "early window %.2f-%.2f; significance level %.2f.",
          t->stiffness_scale, t->rate_stiffness_scale, t->die, t->bed, t->indenter,
          t->gamma_star, t->dt_factor,
@@ -362,11 +364,12 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
   d_head(&d, 2, "Beds (each prepared once, reused by every indentation on it)");
   d_table_begin(&d);
   const char *bh[] = {"bed [d]", "die [d]", "seed", "mu", "Gamma [J/m^2]", "particles",
-                      "solids fraction", "dt [s]", "preparation [s]", "stiffness scale"};
-  d_row(&d, 1, 10, bh);
+                      "solids fraction", "dt [s]", "preparation [s]", "stiffness scale",
+                      "consolidation gamma*"};
+  d_row(&d, 1, 11, bh);
   for (int i = 0; i < h->nbeds; i++) {
     const vh_bed *b = &h->beds[i];
-    char c[10][48];
+    char c[11][48];
     snprintf(c[0], 48, "%g", b->bed), snprintf(c[1], 48, "%g", b->die);
     snprintf(c[2], 48, "%lu", b->seed), snprintf(c[3], 48, "%g", b->mu);
     snprintf(c[4], 48, "%g", b->gamma), snprintf(c[5], 48, "%zu", b->n);
@@ -378,9 +381,10 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
       snprintf(c[8], 48, "%.0f (earlier)", b->prep_s);
     else snprintf(c[8], 48, "%.0f", b->wall_s);
     snprintf(c[9], 48, "%g", b->kscale);
-    const char *cells[10];
-    for (int k = 0; k < 10; k++) cells[k] = c[k];
-    d_row(&d, 0, 10, cells);
+    snprintf(c[10], 48, "%.3g", b->gamma_star);
+    const char *cells[11];
+    for (int k = 0; k < 11; k++) cells[k] = c[k];
+    d_row(&d, 0, 11, cells);
   }
   d_table_end(&d);
 
