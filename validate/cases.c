@@ -58,6 +58,18 @@ static void kpa(char *b, size_t n, const dem_series_stats *s) {
   snprintf(b, n, "%.2f +- %.2f kPa (sd %.2f)", s->mean / 1e3, s->se / 1e3, s->sd / 1e3);
 }
 
+/* A bed of another height than the reference, and the indentation on it: a bed deeper than
+ * the reference is consolidated and indented at the reference bed's speed in m/s, not at
+ * the tier's gamma* (vh_gamma_star_of_bed): with gamma_dot = v / h_bed the same gamma*
+ * moves the piston and the indenter 1.5-2.5x faster on the 30 and 50 d beds than the speed
+ * the speed-versus-accuracy study validated on the 20 d bed, and those beds then read high
+ * because of the speed (diagnostics of 2026-12-01/02, docs/validation.md). The thesis ran
+ * every bed at gamma* 0.01, quasi-static whatever the depth. */
+static void at_height(const vh *h, vh_bed *b, vh_indent *in, double bed) {
+  b->bed = bed;
+  b->gamma_star = in->gamma_star = vh_gamma_star_of_bed(h, bed);
+}
+
 /* The bed-to-bed spread of the plateau mean: for runs on different beds the within-run
  * standard error misses the variation between beds of the same parameters. Estimated from the
  * reference indentation on the tier's replicate beds (seeds 1..k) as
@@ -74,11 +86,9 @@ static double bed_spread(vh *h, vh_case_result *r, double bed, double D, dem_err
   int n = 0;
   for (int i = 0; i < k && i < 8; i++) {
     vh_bed b = vh_bed_ref(h, i);
-    b.bed = bed;
-    b.gamma_star = vh_gamma_star_of_bed(h, bed);
     vh_indent in = vh_indent_ref(h);
+    at_height(h, &b, &in, bed);
     in.D = D;
-    in.gamma_star = b.gamma_star;
     int j = vh_run_get(h, &b, &in, err);
     if (j < 0 || !ok(h, j)) continue;
     m[n++] = h->runs[j].sH.mean;
@@ -253,18 +263,10 @@ static int c_bed(vh *h, vh_case_result *r, dem_err *err) {
   char nm[4][24];
   const char *names[4];
   for (int k = 0; k < t->nbeds; k++) {
-    /* A bed deeper than the reference is consolidated and indented at the reference bed's
-     * speed in m/s, not at the tier's gamma*: with gamma_dot = v / h_bed the same gamma*
-     * moves the piston and the indenter 1.5-2.5x faster on the 30 and 50 d beds than the
-     * speed the speed-versus-accuracy study validated on the 20 d bed, and those beds then
-     * read high because of the speed (diagnostics of 2026-12-01/02, docs/validation.md).
-     * The thesis ran every bed at gamma* 0.01, quasi-static whatever the depth. */
     vh_bed b = vh_bed_ref(h, 0);
-    b.bed = t->beds[k];
-    b.gamma_star = vh_gamma_star_of_bed(h, b.bed);
     vh_indent in = vh_indent_ref(h);
+    at_height(h, &b, &in, t->beds[k]);
     in.D = t->bed_indenter;
-    in.gamma_star = b.gamma_star;
     snprintf(nm[k], sizeof nm[k], "%g d", t->beds[k]);
     names[k] = nm[k];
     char lab[40];
@@ -366,10 +368,8 @@ static int c_size(vh *h, vh_case_result *r, dem_err *err) {
   }
   /* very large indenter on the shallow bed (wall confinement, Fig 5.6) */
   vh_bed b = vh_bed_ref(h, 0);
-  b.bed = t->beds[0];
-  b.gamma_star = vh_gamma_star_of_bed(h, b.bed);
   vh_indent in = vh_indent_ref(h);
-  in.gamma_star = b.gamma_star;
+  at_height(h, &b, &in, t->beds[0]);
   in.D = t->bed_indenter;
   char lab[40];
   snprintf(lab, sizeof lab, "bed %g d, D %g d", b.bed, in.D);
