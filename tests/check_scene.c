@@ -8,6 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <signal.h>
+#include <unistd.h>
+
+#include "dem/checkpoint.h"
 #include "dem/scene.h"
 
 static void small(dem_scene_config *c) {
@@ -102,6 +106,31 @@ START_TEST(test_pipeline) {
   ck_assert_msg(rc == DEM_OK, "%s", err.msg);
   dem_scene_get_info(sc, &in);
   printf("unloaded: bed %g m, phi %.3f\n", in.bed_top, in.phi);
+  {
+    /* The unloaded bed is at rest on the base. Leaving the piston it moves up with it (centre
+     * of mass at up to v/2 = strain_rate x h_bed / 2 ~ 25 mm/s here) and used to be saved in
+     * flight, off the base. At rest: the centre of mass slower than the rms speed the settle
+     * criterion allows, sqrt(2 settle_ke g d) = 1.4 mm/s, and a particle touching the base.
+     * (The net force on the bed is no oracle: the bed rings on its base with forces of the
+     * order of its weight at speeds far below 1.4 mm/s.) */
+    dem_sim *s = dem_scene_sim(sc);
+    ck_assert_int_eq(dem_sim_run(s, 0, &err), DEM_OK);
+    const dem_particles *p = dem_sim_particles(s);
+    double m = 0, mv = 0, fz = 0, w = 0, gap = INFINITY; /* kg, kg m/s, N, N, m */
+    for (size_t i = 0; i < p->n; i++) {
+      m += p->mass[i];
+      mv += p->mass[i] * p->v[3 * i + 2];
+      fz += p->f[3 * i + 2];
+      w += p->mass[i] * 9.81;
+      gap = fmin(gap, p->x[3 * i + 2] - p->radius[i]);
+    }
+    const double v_lim = sqrt(2.0 * c.settle_ke * 9.81 * c.d_mean);
+    printf("unloaded: centre of mass %.3g m/s, net force %.3g of the weight, lowest gap %.3g m\n",
+           mv / m, fz / w, gap);
+    ck_assert_msg(fabs(mv / m) < v_lim, "centre of mass moves at %g m/s (limit %g)", mv / m,
+                  v_lim);
+    ck_assert_msg(gap <= 0.0, "no particle touches the base (lowest gap %g m)", gap);
+  }
   long r0 = dem_table_nrows(t);
   rc = dem_scene_indent(sc, &err);
   ck_assert_msg(rc == DEM_OK, "%s", err.msg);
@@ -123,6 +152,71 @@ START_TEST(test_pipeline) {
   ck_assert_msg(b > a && b > 0.0, "indenter force first quarter %g, last %g", a / q, b / q);
   ck_assert(in.indenter_force > 0.0);
   dem_scene_free(sc);
+}
+END_TEST
+
+/* The unload stage's relax phase (the bed coming to rest after the piston left it, since
+ * 2026-12-02) resumes bit for bit after an interruption saved to a file: the snapshot hook
+ * raises the engine's interrupt flag at the first snapshot with the piston at a standstill
+ * (wall 2; it moves at the loading speed until it loses the bed), i.e. inside the relax. */
+static volatile sig_atomic_t relax_flag;
+static int relax_hook(dem_sim *s, const char *stage, double t, void *user, dem_err *err) {
+  (void)t, (void)user, (void)err;
+  dem_wall_spec w;
+  if (strcmp(stage, "unload") == 0 && dem_sim_wall(s, 2, &w) == 0 && w.v[2] == 0.0)
+    relax_flag = 1;
+  return 0;
+}
+
+static dem_scene *consolidated(const dem_scene_hooks *h) {
+  dem_scene_config c;
+  small(&c);
+  dem_err err;
+  dem_scene *sc = dem_scene_create(&c, h, &err);
+  ck_assert_msg(sc != NULL, "%s", err.msg);
+  ck_assert_int_eq(dem_scene_fill(sc, &err), DEM_OK);
+  ck_assert_msg(dem_scene_settle(sc, &err) == DEM_OK, "%s", err.msg);
+  ck_assert_msg(dem_scene_consolidate(sc, &err) == DEM_OK, "%s", err.msg);
+  return sc;
+}
+
+START_TEST(test_relax_interrupted) {
+  dem_err err;
+  dem_scene *a = consolidated(NULL);
+  ck_assert_msg(dem_scene_unload(a, &err) == DEM_OK, "%s", err.msg);
+  dem_scene_hooks h = {NULL, 0.0, relax_hook, 1e-4, NULL};
+  dem_scene *b = consolidated(&h);
+  relax_flag = 0;
+  dem_sim_set_interrupt_flag(dem_scene_sim(b), &relax_flag);
+  int rc = dem_scene_unload(b, &err);
+  ck_assert_msg(rc == DEM_EINTERRUPTED, "expected an interruption in the relax, got %d: %s", rc,
+                err.msg);
+  char path[64];
+  snprintf(path, sizeof path, "relax_intr_%ld.h5", (long)getpid());
+  ck_assert_msg(dem_scene_save(b, path, &err) == DEM_OK, "%s", err.msg);
+  dem_sim_stats st;
+  dem_sim_get_stats(dem_scene_sim(b), &st);
+  dem_scene_free(b);
+  b = dem_scene_restore(path, NULL, NULL, &err);
+  ck_assert_msg(b != NULL, "%s", err.msg);
+  ck_assert_int_eq(dem_scene_get_stage(b), DEM_SCENE_STAGE_CONSOLIDATED);
+  ck_assert_msg(dem_scene_unload(b, &err) == DEM_OK, "%s", err.msg);
+  remove(path);
+  const dem_particles *pa = dem_sim_particles(dem_scene_sim(a));
+  const dem_particles *pb = dem_sim_particles(dem_scene_sim(b));
+  ck_assert_uint_eq(pa->n, pb->n);
+  dem_sim_stats sa, sb;
+  dem_sim_get_stats(dem_scene_sim(a), &sa);
+  dem_sim_get_stats(dem_scene_sim(b), &sb);
+  ck_assert_msg(sa.steps == sb.steps, "relax ended at step %ld, resumed one at %ld", sa.steps,
+                sb.steps);
+  ck_assert_msg(memcmp(pa->x, pb->x, 3 * pa->n * sizeof *pa->x) == 0 &&
+                    memcmp(pa->v, pb->v, 3 * pa->n * sizeof *pa->v) == 0,
+                "positions or velocities differ after the resumed relax");
+  printf("relax interrupted at step %ld (t = %g s), resumed: ends at step %ld, equal bit for "
+         "bit\n", st.steps, st.time, sb.steps);
+  dem_scene_free(a);
+  dem_scene_free(b);
 }
 END_TEST
 
@@ -154,6 +248,7 @@ int main(void) {
   tcase_add_loop_test(tc, test_fill, 0, 2);
   tcase_add_test(tc, test_config_errors);
   tcase_add_test(tc, test_pipeline);
+  tcase_add_test(tc, test_relax_interrupted);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

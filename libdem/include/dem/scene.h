@@ -117,7 +117,8 @@ void dem_scene_free(dem_scene *sc);
 int dem_scene_fill(dem_scene *sc, dem_err *err);
 int dem_scene_settle(dem_scene *sc, dem_err *err);
 int dem_scene_consolidate(dem_scene *sc, dem_err *err); /* load to sigma_pre and hold */
-int dem_scene_unload(dem_scene *sc, dem_err *err);      /* piston back to zero load, away */
+int dem_scene_unload(dem_scene *sc, dem_err *err);      /* piston back to zero load, away;
+                                                           the bed left at rest (docs/scene.md) */
 int dem_scene_indent(dem_scene *sc, dem_err *err);      /* indent (and unload if asked) */
 int dem_scene_run(dem_scene *sc, dem_err *err);         /* all of the above */
 

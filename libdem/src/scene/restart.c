@@ -24,7 +24,10 @@
 #include "scene_internal.h"
 
 #define SCENE_MAGIC "dem-scene"
-#define SCENE_BLOB_VERSION 1
+/* 2 (2026-12-02): the unload stage ends with the bed at rest (its relax phase, scene.c; the
+ * state gains t_rest); a version-1 unloaded bed was saved while it flew off the base, so it
+ * is not read. */
+#define SCENE_BLOB_VERSION 2
 
 enum { T_F64 = 0, T_I64 = 1, T_BYTES = 2 };
 
@@ -169,7 +172,8 @@ int dem_scene_save(const dem_scene *sc, const char *path, dem_err *err) {
   const double d[] = {sc->die_radius, sc->fill_top, sc->mean_d, sc->sd_d, sc->dt,
                       sc->k_max, sc->m_mean, sc->bed_top, sc->phi, sc->surface,
                       sc->v_piston, sc->v_ind, sc->ind_r, sc->next_snap, sc->t0,
-                      sc->t_max, sc->z_half, sc->f_half, sc->t_in, sc->f_set, sc->gain};
+                      sc->t_max, sc->z_half, sc->f_half, sc->t_in, sc->f_set, sc->gain,
+                      sc->t_rest};
   rec(&w, "state", T_F64, sizeof d / sizeof d[0], d);
   const long nr = dem_table_nrows(sc->series);
   const int nc = dem_table_ncols(sc->series);
@@ -491,14 +495,15 @@ dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
   sc->mat_p = (int)idx[0], sc->mat_w = (int)idx[1], sc->mat_i = (int)idx[2];
   sc->w_base = (int)idx[3], sc->w_die = (int)idx[4], sc->w_piston = (int)idx[5];
   sc->w_ind = (int)idx[6];
-  if (!(r = find(&rb, "state", T_F64, 21))) goto fail;
-  double d[21];
+  if (!(r = find(&rb, "state", T_F64, 22))) goto fail;
+  double d[22];
   memcpy(d, r->data, sizeof d);
   sc->die_radius = d[0], sc->fill_top = d[1], sc->mean_d = d[2], sc->sd_d = d[3];
   sc->dt = d[4], sc->k_max = d[5], sc->m_mean = d[6], sc->bed_top = d[7], sc->phi = d[8];
   sc->surface = d[9], sc->v_piston = d[10], sc->v_ind = d[11], sc->ind_r = d[12];
   sc->next_snap = d[13], sc->t0 = d[14], sc->t_max = d[15], sc->z_half = d[16];
   sc->f_half = d[17], sc->t_in = d[18], sc->f_set = d[19], sc->gain = d[20];
+  sc->t_rest = d[21];
   int64_t nc = 0, nr = 0;
   if (get_i(&rb, "series_ncols", &nc) || get_i(&rb, "series_nrows", &nr)) goto fail;
   if (!(sc->series = scene_series_create(err))) goto fail;

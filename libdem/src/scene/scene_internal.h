@@ -32,6 +32,8 @@ struct dem_scene {
    * (restart.c). sub: 0 not begun, then a stage-specific phase >= 1. */
   int sub;
   double t0, t_max;          /* s: stage start (simulated), give-up duration */
+  double t_rest;             /* s, unload relax: simulated time since which the bed has been
+                                at rest as a whole (< 0: not at rest) */
   double z_half, f_half;     /* consolidation: piston z (m) and force (N) at half load */
   double t_in, f_set, gain;  /* servo: band entry time (s), set point (N), gain (m/(N s)) */
   int resume;                /* 1: an advance was interrupted; finish it first */
