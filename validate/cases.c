@@ -67,6 +67,9 @@ static void kpa(char *b, size_t n, const dem_series_stats *s) {
  * every bed at gamma* 0.01, quasi-static whatever the depth. */
 static void at_height(const vh *h, vh_bed *b, vh_indent *in, double bed) {
   b->bed = bed;
+  /* The thesis' shallow bed (13 mm) is in a 39 mm die, its deeper beds in the 45 mm die
+   * (Figs 5.2-5.11 against 5.12-5.19): the tier's shallow_die. */
+  if (bed < h->tier->bed && h->tier->shallow_die > 0) b->die = h->tier->shallow_die;
   b->gamma_star = in->gamma_star = vh_gamma_star_of_bed(h, bed);
 }
 
@@ -260,12 +263,14 @@ static int c_bed(vh *h, vh_case_result *r, dem_err *err) {
   r->logx = 0;
   const vh_tier *t = h->tier;
   int idx[4];
+  double die[4];
   char nm[4][24];
   const char *names[4];
   for (int k = 0; k < t->nbeds; k++) {
     vh_bed b = vh_bed_ref(h, 0);
     vh_indent in = vh_indent_ref(h);
     at_height(h, &b, &in, t->beds[k]);
+    die[k] = b.die;
     in.D = t->bed_indenter;
     snprintf(nm[k], sizeof nm[k], "%g d", t->beds[k]);
     names[k] = nm[k];
@@ -275,8 +280,9 @@ static int c_bed(vh *h, vh_case_result *r, dem_err *err) {
   }
   s_bed_cur = bed_spread(h, r, t->bed, t->bed_indenter, err);
   char what[200];
-  snprintf(what, sizeof what, "H of the %g d bed exceeds H of the %g d bed (indenter %g d)",
-           t->beds[0], t->beds[1], t->bed_indenter);
+  snprintf(what, sizeof what, "H of the %g d bed (%g d die) exceeds H of the %g d bed (%g d "
+                              "die; indenter %g d)",
+           t->beds[0], die[0], t->beds[1], die[1], t->bed_indenter);
   vh_check *c = check(r, what, "z, one-sided, level 0.05",
                       "13 mm bed ~8 kPa vs ~6 kPa at 20-50 mm (Fig 5.12)");
   greater(h, c, idx[0], idx[1], nm[0], nm[1]);
@@ -381,7 +387,7 @@ static int c_size(vh *h, vh_case_result *r, dem_err *err) {
   if (i2 < 0) return err->code;
   snprintf(what, sizeof what, "on the %g d bed in the %g d die, the %g d indenter reads higher "
                               "than the %g d one (wall confinement)",
-           t->beds[0], t->die, t->wall_indenter, t->bed_indenter);
+           t->beds[0], b.die, t->wall_indenter, t->bed_indenter);
   c = check(r, what, "z, one-sided, level 0.05",
             "22-25 mm on the 13 mm bed ~10 kPa vs ~8 kPa (Fig 5.6)");
   char a[24], bb[24];

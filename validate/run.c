@@ -32,6 +32,10 @@
  * full:   thesis scale (chapters 5-7: die 45 d, bed 20 d, sphere 16 d, bed heights 13, 20,
  *         30, 50 d, sizes 7-22 d, the 25 d ball on the 13 d bed); hours on 2 cores.
  * smoke:  the smallest scene that exercises every path (tests; not a validation).
+ * Shallow-bed die: the thesis' 13 mm bed (case 2's shallowest, and the bed of the
+ *         wall-confinement runs of case 3, Figs 5.2-5.11) is in a 39 mm die, its 20-50 mm
+ *         beds in the 45 mm die (5.2); full keeps 39 d, quick and medium the same ratio
+ *         (20 x 39/45 = 17.3 d); smoke keeps one die (it tests the program, not the physics).
  * Stiffness: every stiffness of Tables 6.2/6.3 x0.01 (the speed-versus-accuracy study,
  * docs/validation-study.md), but x0.1 for the high-rate cases 10 and 11: at x0.01 the
  * indenter at gamma* 2.3 drives the first particles it meets through v sqrt(m* / k) ~ 0.13 r
@@ -43,14 +47,15 @@
  * for the 8 d sphere of quick/medium. */
 static const vh_tier tiers[] = {
     {"quick", 20.0, 12.0, 8.0, 0.1, 0.01, 0.1, 0.2, 0.36, 0.5, 0.25, 0.5, 0.02, 0.1,
-     2, {8.0, 12.0}, 8.0, 4, {4.0, 6.0, 8.0, 10.0}, 8.0, 12.0, 1, 0x7},
+     2, {8.0, 12.0}, 8.0, 4, {4.0, 6.0, 8.0, 10.0}, 8.0, 12.0, 17.3, 1, 0x7},
     {"medium", 20.0, 12.0, 8.0, 0.1, 0.01, 0.1, 0.2, 0.36, 0.5, 0.25, 0.5, 0.02, 0.1,
-     4, {8.0, 12.0, 18.0, 30.0}, 8.0, 6, {4.0, 5.0, 6.0, 7.0, 8.0, 10.0}, 7.0, 12.0, 2, 0x7ff},
-    {"full", 45.0, 20.0, 16.0, 0.1, 0.01, 0.1, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
-     4, {13.0, 20.0, 30.0, 50.0}, 13.0, 6, {7.0, 10.0, 13.0, 16.0, 19.0, 22.0}, 16.0, 25.0, 2,
+     4, {8.0, 12.0, 18.0, 30.0}, 8.0, 6, {4.0, 5.0, 6.0, 7.0, 8.0, 10.0}, 7.0, 12.0, 17.3, 2,
      0x7ff},
+    {"full", 45.0, 20.0, 16.0, 0.1, 0.01, 0.1, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
+     4, {13.0, 20.0, 30.0, 50.0}, 13.0, 6, {7.0, 10.0, 13.0, 16.0, 19.0, 22.0}, 16.0, 25.0, 39.0,
+     2, 0x7ff},
     {"smoke", 10.0, 6.0, 4.0, 0.2, 0.01, 0.1, 0.2, 0.36, 0.5, 0.2, 0.5, 0.02, 0.1,
-     2, {4.0, 6.0}, 4.0, 3, {3.0, 4.0, 5.0}, 4.0, 7.0, 1, 0x7},
+     2, {4.0, 6.0}, 4.0, 3, {3.0, 4.0, 5.0}, 4.0, 7.0, 0.0, 1, 0x7},
 };
 
 const vh_tier *vh_tier_find(const char *name) {

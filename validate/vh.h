@@ -50,6 +50,10 @@ typedef struct vh_tier {
   double sizes[6];         /* d */
   double stable_from;      /* d, sizes >= this count as "large" in case 3 */
   double wall_indenter;    /* d, the very large indenter of case 3 on the shallow bed */
+  double shallow_die;      /* d, die of the beds shallower than the reference (case 2's
+                              shallowest bed and case 3's wall-confinement runs): the thesis'
+                              13 mm bed is in a 39 mm die (Figs 5.2-5.11), its 20-50 mm beds
+                              in the 45 mm die (Figs 5.12-5.19); 0: the tier's die */
   int replicates;          /* reference beds with different seeds (>= 1) */
   int cases_mask;          /* bit i: case i + 1 runs in this tier */
 } vh_tier;
