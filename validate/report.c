@@ -124,8 +124,13 @@ static int gnuplot(const vh *h, const char *script, dem_err *err) {
   if (!f) return dem_err_set(err, DEM_EIO, "dem-validate: cannot write a gnuplot script");
   fputs(script, f);
   fclose(f);
+  /* gnuplot runs in the out folder (the script names the data and PNG files relative to
+   * it), so it is given the script's name there: tmp is "OUT/name", and a relative OUT
+   * (the default, and the main job's) would not be found from inside OUT */
+  const char *base = strrchr(tmp, '/');
+  base = base ? base + 1 : tmp;
   char cmd[1800];
-  snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot '%s' 2>/dev/null", h->out, tmp);
+  snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot '%s' 2>/dev/null", h->out, base);
   int rc = system(cmd);
   remove(tmp);
   return rc == 0 ? DEM_OK : dem_err_set(err, DEM_EIO, "dem-validate: gnuplot failed");
@@ -233,6 +238,9 @@ static void case_plots(vh *h, vh_case_result *r, int plots, dem_err *err) {
     if (!vh_plot_trend(h, png, title, r->xlabel, r->x, r->runs, r->nruns, r->logx, err))
       snprintf(r->plots[k++], 96, "%s", png);
   }
+  /* a figure that could not be made is said, not silently left out of the report */
+  if (err->code) vh_log(h, "warning: case %s: %s (a figure is missing from the report)",
+                        r->name, err->msg);
   *err = (dem_err){0};
 }
 
