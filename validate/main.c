@@ -2,7 +2,7 @@
  *
  *   dem-validate [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
  *                [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]
- *                [--plan] [--no-run-cache] [--budget S]
+ *                [--plan] [--no-run-cache] [--budget S] [--materials SET]
  *   mpirun -n R dem-validate ...   beds and runs distributed over R ranks (validate/dist.c)
  *
  * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
@@ -32,7 +32,7 @@ static void usage(FILE *f) {
   fprintf(f,
           "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
           "          [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]\n"
-          "          [--plan] [--no-run-cache] [--budget S]\n"
+          "          [--plan] [--no-run-cache] [--budget S] [--materials SET]\n"
           "       mpirun -n R %s ...   (independent beds and runs on R ranks)\n"
           "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
           "             same geometry, all eleven cases, ~30 min), full (thesis scale, all\n"
@@ -55,7 +55,11 @@ static void usage(FILE *f) {
           "             first, and start none whose estimate (scaled by how long the ones\n"
           "             made so far took) would end more than S seconds after the start; the\n"
           "             criteria that need what was not made are N/A, and a later invocation\n"
-          "             over the same --beds goes on (with --plan: prints that order)\n",
+          "             over the same --beds goes on (with --plan: prints that order)\n"
+          "  --materials pasha-simplified (default: chapters 6/7, Tables 6.1-6.3, every case)\n"
+          "             or hertz-jkr (chapter 5's cohesive glass beads, Tables 5.1-5.3: the\n"
+          "             materials of the thesis' runs behind cases 1-4, which are the only\n"
+          "             cases it runs)\n",
           prog, prog);
 }
 
@@ -129,7 +133,8 @@ static int run_cases(vh *h, void *user) {
   FILE *o = L->json ? stderr : stdout;
   for (int i = 0; i < vh_ncases; i++) {
     int sel = selected(L->cases, vh_cases[i].name);
-    if (sel == 0 || (sel < 0 && !(t->cases_mask & (1 << i)))) continue;
+    int mask = t->cases_mask & (h->materials == DEM_SCENE_HERTZ_JKR ? VH_CHAPTER5_CASES : ~0);
+    if (sel == 0 || (sel < 0 && !(mask & (1 << i)))) continue;
     vh_case_result *r = &L->res[L->nres++];
     memset(r, 0, sizeof *r);
     h->cur_case = L->nres - 1;
@@ -205,10 +210,12 @@ int main(int argc, char **argv) {
                                  {"plan", no_argument, 0, 'P'},
                                  {"no-run-cache", no_argument, 0, 'N'},
                                  {"budget", required_argument, 0, 'T'},
+                                 {"materials", required_argument, 0, 'M'},
                                  {"help", no_argument, 0, 'h'},
                                  {"version", no_argument, 0, 'V'},
                                  {0, 0, 0, 0}};
   const char *tier = "quick", *cases = NULL, *out = NULL, *beds = NULL, *baseline = NULL;
+  dem_scene_materials materials = DEM_SCENE_PASHA;
   double threads = 2, level = 0.05, budget = 0;
   int json = 0, list = 0, verbose = 0, plan_only = 0, no_cache = 0, o;
   dem_err err = {0};
@@ -234,6 +241,15 @@ int main(int argc, char **argv) {
     case 'N': no_cache = 1; break;
     case 'T':
       if (cli_parse_double("--budget", optarg, 1, 1e7, &budget, &err)) goto usage_error;
+      break;
+    case 'M':
+      if (strcmp(optarg, "pasha-simplified") == 0) materials = DEM_SCENE_PASHA;
+      else if (strcmp(optarg, "hertz-jkr") == 0) materials = DEM_SCENE_HERTZ_JKR;
+      else {
+        dem_err_set(&err, DEM_EINVAL, "--materials %s: unknown (allowed: pasha-simplified, "
+                                      "hertz-jkr)", optarg);
+        goto usage_error;
+      }
       break;
     case 'h': usage(stdout); return CLI_EXIT_OK;
     case 'V': cli_print_version(prog); return CLI_EXIT_OK;
@@ -267,6 +283,15 @@ int main(int argc, char **argv) {
         dem_err_set(&err, DEM_EINVAL, "--case %.*s: unknown case (see --list)", (int)m, p);
         goto usage_error;
       }
+      for (int i = 0; i < vh_ncases; i++)
+        if (strlen(vh_cases[i].name) == m && strncmp(vh_cases[i].name, p, m) == 0 &&
+            materials == DEM_SCENE_HERTZ_JKR && !(VH_CHAPTER5_CASES & (1 << i))) {
+          dem_err_set(&err, DEM_EINVAL, "--case %.*s with --materials hertz-jkr: the thesis "
+                      "ran it with the chapter 6/7 materials (pasha-simplified); hertz-jkr "
+                      "takes the chapter 5 cases only (plateau, bed-height, indenter-size, "
+                      "penetration-depth)", (int)m, p);
+          goto usage_error;
+        }
       p += m + (e ? 1 : 0);
     }
 
@@ -277,6 +302,7 @@ int main(int argc, char **argv) {
     return CLI_EXIT_RUN;
   }
   h->tier = t;
+  h->materials = materials;
   h->threads = (int)threads;
   h->nranks = 1;
   h->use_cache = !no_cache;

@@ -344,7 +344,7 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
              "cases, criteria and settings).",
          when, mach, h->nranks, h->threads, wall_s, wall_s / 60, cost, cost / 60, ncached,
          h->nruns, npass, nfail, nother, t->name);
-  d_para(&d, "Scene: chapter 6/7 materials (pasha-simplified, thesis Tables 6.1-6.3) with "
+  d_para(&d, "Scene: %s with "
              "every stiffness scaled by %g (by %g on the beds of the high-rate cases 10 and "
              "11), die %g d, reference bed %g d, reference sphere "
              "%g d, pre-consolidation 10 kPa, all rates gamma* = %g (gamma_dot = v / h_bed) "
@@ -352,6 +352,11 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
              "indented at the reference bed's speed in m/s (gamma* x reference / bed; the "
              "bed table lists it), dt = %g sqrt(m_min / k_max). Plateau window h/r %.2f-%.2f; "
              "early window %.2f-%.2f; significance level %.2f.",
+         h->materials == DEM_SCENE_HERTZ_JKR
+             ? "chapter 5 materials (hertz-jkr: cohesive glass beads, Hertz + modified JKR "
+               "between particles, thesis Tables 5.1-5.3; the indenter is Material 1 with "
+               "friction 0.15), the materials of the thesis' runs behind cases 1-4"
+             : "chapter 6/7 materials (pasha-simplified, thesis Tables 6.1-6.3)",
          t->stiffness_scale, t->rate_stiffness_scale, t->die, t->bed, t->indenter,
          t->gamma_star, t->dt_factor,
          t->plateau_lo, t->plateau_hi, t->early_lo, t->early_hi, h->level);
@@ -488,11 +493,15 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
   json_object_set_new(root, "cost_s", jnum(cost));
   json_object_set_new(root, "level", jnum(h->level));
   json_object_set_new(root, "settings",
-                      json_pack("{s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "die_d", t->die, "bed_d",
-                                t->bed, "indenter_d", t->indenter, "gamma_star", t->gamma_star,
-                                "stiffness_scale", t->stiffness_scale, "rate_stiffness_scale", t->rate_stiffness_scale, "dt_factor",
-                                t->dt_factor, "plateau_h_over_r", t->plateau_lo,
-                                t->plateau_hi));
+                      json_pack("{s:s,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "materials",
+                                h->materials == DEM_SCENE_HERTZ_JKR ? "hertz-jkr"
+                                                                    : "pasha-simplified",
+                                "die_d", t->die, "shallow_die_d",
+                                t->shallow_die > 0 ? t->shallow_die : t->die, "bed_d", t->bed,
+                                "indenter_d", t->indenter, "gamma_star", t->gamma_star,
+                                "stiffness_scale", t->stiffness_scale, "rate_stiffness_scale",
+                                t->rate_stiffness_scale, "dt_factor", t->dt_factor,
+                                "plateau_h_over_r", t->plateau_lo, t->plateau_hi));
   for (int i = 0; i < h->nbeds; i++) {
     const vh_bed *b = &h->beds[i];
     json_array_append_new(

@@ -95,8 +95,9 @@ vh_bed vh_bed_ref(const vh *h, int replicate) {
   b.bed = h->tier->bed;
   b.die = h->tier->die;
   b.seed = 1 + (unsigned long)replicate;
-  b.mu = 0.15;   /* Table 6.3 */
-  b.gamma = 2.0; /* Table 6.3, J/m^2 */
+  b.mu = 0.15;   /* Tables 5.3, 6.3 */
+  /* J/m^2: Table 6.3 (pasha-simplified), Table 5.3 (hertz-jkr, Material 1 - Material 1) */
+  b.gamma = h->materials == DEM_SCENE_HERTZ_JKR ? 0.5 : 2.0;
   b.kscale = h->tier->stiffness_scale;
   b.gamma_star = h->tier->gamma_star;
   return b;
@@ -114,14 +115,17 @@ vh_bed vh_bed_rate(const vh *h) {
 }
 
 vh_indent vh_indent_ref(const vh *h) {
-  vh_indent i = {DEM_INDENTER_SPHERE, h->tier->indenter, h->tier->gamma_star, 1.0, 0.0, 1.0};
+  /* particle-indenter friction: 0 in chapters 6/7 (Table 6.3, the geometries); 0.15 in
+   * chapter 5, whose indenter is Material 1 (Table 5.3, 5.1.3) */
+  double mu_i = h->materials == DEM_SCENE_HERTZ_JKR ? 0.15 : 0.0;
+  vh_indent i = {DEM_INDENTER_SPHERE, h->tier->indenter, h->tier->gamma_star, 1.0, mu_i, 1.0};
   return i;
 }
 
 /* The scene configuration of a bed (and of the reference indentation on it). */
 static int bed_config(const vh *h, const vh_bed *b, dem_scene_config *c, dem_err *err) {
   const vh_tier *t = h->tier;
-  dem_scene_config_defaults(c, DEM_SCENE_PASHA);
+  dem_scene_config_defaults(c, h->materials);
   c->die_diameter = b->die;
   c->bed_height = b->bed;
   c->seed = b->seed;
@@ -142,9 +146,9 @@ static int bed_config(const vh *h, const vh_bed *b, dem_scene_config *c, dem_err
 
 static void bed_name(const vh *h, const vh_bed *b, char *buf, size_t len) {
   const vh_tier *t = h->tier;
-  snprintf(buf, len, "bed%g_die%g_seed%lu_mu%g_gamma%g_k%g_dt%g_g%g_f%g", b->bed, b->die,
+  snprintf(buf, len, "bed%g_die%g_seed%lu_mu%g_gamma%g_k%g_dt%g_g%g_f%g%s", b->bed, b->die,
            b->seed, b->mu, b->gamma, b->kscale, t->dt_factor, b->gamma_star,
-           t->fill_fraction);
+           t->fill_fraction, h->materials == DEM_SCENE_HERTZ_JKR ? "_hertz-jkr" : "");
 }
 
 static int mkdir_p(const char *dir) {
@@ -421,12 +425,20 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   o.indent_rate = rate_of(ind->gamma_star);
   o.h_over_r = t->h_end;
   o.dt_factor = t->dt_factor * ind->dt_scale;
-  /* particle-indenter stiffness and friction (Table 6.3; 6.2.1, 6.2.3) */
-  double kn = dem_params_get_or(&o.pi, "kn", 8e6), kt = dem_params_get_or(&o.pi, "kt", 8e6);
-  if (dem_params_set(&o.pi, "kn", kn * ind->kn_scale, "dem-validate", err) ||
-      dem_params_set(&o.pi, "kt", kt * ind->kn_scale, "dem-validate", err) ||
-      dem_params_set(&o.pi, "mu", ind->mu_ind, "dem-validate", err))
-    return -1;
+  /* particle-indenter stiffness and friction (Table 6.3; 6.2.1, 6.2.3); with chapter 5's
+   * materials the indenter's stiffness is its Young's modulus (Table 5.2, `wall_E`) */
+  if (h->materials == DEM_SCENE_HERTZ_JKR) {
+    double E = dem_params_get_or(&o.pi, "wall_E", 55e9);
+    if (dem_params_set(&o.pi, "wall_E", E * ind->kn_scale, "dem-validate", err) ||
+        dem_params_set(&o.pi, "mu", ind->mu_ind, "dem-validate", err))
+      return -1;
+  } else {
+    double kn = dem_params_get_or(&o.pi, "kn", 8e6), kt = dem_params_get_or(&o.pi, "kt", 8e6);
+    if (dem_params_set(&o.pi, "kn", kn * ind->kn_scale, "dem-validate", err) ||
+        dem_params_set(&o.pi, "kt", kt * ind->kn_scale, "dem-validate", err) ||
+        dem_params_set(&o.pi, "mu", ind->mu_ind, "dem-validate", err))
+      return -1;
+  }
   /* one sample every 0.0025 h/r: the same resolution for every rate and size */
   double v = o.indent_rate * b->bed_top;
   o.sample_interval = 0.0025 * 0.5 * ind->D * D_MEAN / v;

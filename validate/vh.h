@@ -27,6 +27,8 @@
 #define VH_MAX_CHECKS 8
 #define VH_MAX_CASE_RUNS 12
 #define VH_MAX_CASES 16
+/* Cases 1-4 (bits 0-3) reproduce chapter 5, whose runs used its own materials (hertz-jkr) */
+#define VH_CHAPTER5_CASES 0xf
 
 /* The scale of a tier (lengths in d, rates as gamma* = gamma_dot sqrt(d/g)). */
 typedef struct vh_tier {
@@ -153,6 +155,8 @@ typedef struct vh_case_result {
 
 typedef struct vh {
   const vh_tier *tier;
+  dem_scene_materials materials; /* pasha-simplified (chapters 6/7, every case; default) or
+                                    hertz-jkr (chapter 5's glass beads, cases 1-4 only) */
   char out[512];
   char beds_dir[512];
   int threads;
