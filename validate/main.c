@@ -242,15 +242,17 @@ int main(int argc, char **argv) {
     case 'T':
       if (cli_parse_double("--budget", optarg, 1, 1e7, &budget, &err)) goto usage_error;
       break;
-    case 'M':
-      if (strcmp(optarg, "pasha-simplified") == 0) materials = DEM_SCENE_PASHA;
-      else if (strcmp(optarg, "hertz-jkr") == 0) materials = DEM_SCENE_HERTZ_JKR;
-      else {
-        dem_err_set(&err, DEM_EINVAL, "--materials %s: unknown (allowed: pasha-simplified, "
-                                      "hertz-jkr)", optarg);
+    case 'M': {
+      int k = 0;
+      while (dem_scene_materials_names[k] && strcmp(optarg, dem_scene_materials_names[k])) k++;
+      if (!dem_scene_materials_names[k]) {
+        dem_err_set(&err, DEM_EINVAL, "--materials %s: unknown (allowed: %s, %s)", optarg,
+                    dem_scene_materials_names[0], dem_scene_materials_names[1]);
         goto usage_error;
       }
+      materials = (dem_scene_materials)k;
       break;
+    }
     case 'h': usage(stdout); return CLI_EXIT_OK;
     case 'V': cli_print_version(prog); return CLI_EXIT_OK;
     default: cli_getopt_error(argv, &err); goto usage_error;

@@ -494,8 +494,7 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
   json_object_set_new(root, "level", jnum(h->level));
   json_object_set_new(root, "settings",
                       json_pack("{s:s,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "materials",
-                                h->materials == DEM_SCENE_HERTZ_JKR ? "hertz-jkr"
-                                                                    : "pasha-simplified",
+                                dem_scene_materials_names[h->materials],
                                 "die_d", t->die, "shallow_die_d",
                                 t->shallow_die > 0 ? t->shallow_die : t->die, "bed_d", t->bed,
                                 "indenter_d", t->indenter, "gamma_star", t->gamma_star,

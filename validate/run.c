@@ -146,9 +146,12 @@ static int bed_config(const vh *h, const vh_bed *b, dem_scene_config *c, dem_err
 
 static void bed_name(const vh *h, const vh_bed *b, char *buf, size_t len) {
   const vh_tier *t = h->tier;
-  snprintf(buf, len, "bed%g_die%g_seed%lu_mu%g_gamma%g_k%g_dt%g_g%g_f%g%s", b->bed, b->die,
+  /* the default materials add nothing: the names of the beds made before --materials stay */
+  const int other = h->materials != DEM_SCENE_PASHA;
+  snprintf(buf, len, "bed%g_die%g_seed%lu_mu%g_gamma%g_k%g_dt%g_g%g_f%g%s%s", b->bed, b->die,
            b->seed, b->mu, b->gamma, b->kscale, t->dt_factor, b->gamma_star,
-           t->fill_fraction, h->materials == DEM_SCENE_HERTZ_JKR ? "_hertz-jkr" : "");
+           t->fill_fraction, other ? "_" : "",
+           other ? dem_scene_materials_names[h->materials] : "");
 }
 
 static int mkdir_p(const char *dir) {

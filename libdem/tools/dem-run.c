@@ -145,9 +145,8 @@ static int load(const char *file, dem_scene_config *c, double *snap_dt, dem_err 
   }
   cfgctx cx = {file, err};
   config_setting_t *root = config_root_setting(&cf);
-  static const char *const sets[] = {"pasha-simplified", "hertz-jkr", NULL};
   int m = 0;
-  if ((rc = word(&cx, root, "materials", sets, &m))) goto out;
+  if ((rc = word(&cx, root, "materials", dem_scene_materials_names, &m))) goto out;
   dem_scene_config_defaults(c, (dem_scene_materials)m);
   config_setting_t *bed = config_setting_get_member(root, "bed");
   config_setting_t *st = config_setting_get_member(root, "settle");

@@ -18,6 +18,9 @@
 #include "dem/table.h"
 
 typedef enum { DEM_SCENE_PASHA = 0, DEM_SCENE_HERTZ_JKR = 1 } dem_scene_materials;
+/* Their names (config key `materials`, dem-validate --materials), indexed by the enum, NULL
+ * after the last: "pasha-simplified", "hertz-jkr". */
+extern const char *const dem_scene_materials_names[];
 typedef enum { DEM_SCENE_PSD_T61 = 0, DEM_SCENE_PSD_T51 = 1 } dem_scene_psd;
 typedef enum {
   DEM_INDENTER_SPHERE = 0,

@@ -34,6 +34,8 @@ static void set(dem_params *ps, const char *k, double v) {
   dem_params_set(ps, k, v, "default", &e);
 }
 
+const char *const dem_scene_materials_names[] = {"pasha-simplified", "hertz-jkr", NULL};
+
 void dem_scene_config_defaults(dem_scene_config *c, dem_scene_materials m) {
   memset(c, 0, sizeof *c);
   c->materials = m;
