@@ -91,9 +91,10 @@ typedef struct dem_breakdown {
   double max_overlap_frac; /* stop (DEM_ERUNAWAY) if an overlap exceeds this fraction of the
                               smaller radius of the contact; default 0.25 */
   int check_interval;      /* steps between NaN / energy checks; default 100 */
-  double ke_growth;        /* an interval's kinetic-energy gain not explained by the work
-                              of gravity and walls, relative to the kinetic energy before
-                              it, that counts as a strike; default 1 (more than doubling) */
+  double ke_growth;        /* an interval's kinetic-energy gain not explained by the energy
+                              gravity and walls supplied (if positive), relative to the
+                              kinetic energy before it, that counts as a strike; default 1
+                              (more than doubling) */
   int ke_strikes;          /* consecutive strikes that stop the run (DEM_EUNSTABLE);
                               default 10: an unstable step grows geometrically (x1000 in
                               10 intervals), while energy released by initial overlaps or

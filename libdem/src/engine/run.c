@@ -11,10 +11,14 @@
  *
  * Breakdown: after every force evaluation the largest overlap (relative to the smaller
  * radius) is compared with bd.max_overlap_frac (DEM_ERUNAWAY); every bd.check_interval
- * steps the kinetic energy is computed: non-finite -> DEM_ENONFINITE; a gain over the
- * interval, beyond the work done by gravity and the walls, larger than bd.ke_growth times
- * the kinetic energy at the start of the interval counts as a strike, and bd.ke_strikes
- * consecutive strikes -> DEM_EUNSTABLE. (Elastic energy released by overlaps present at the
+ * steps the kinetic energy is computed: non-finite -> DEM_ENONFINITE; a gain of kinetic
+ * energy over the interval, beyond the energy supplied by gravity and the walls (counted
+ * only when positive: energy leaving the particles explains no gain), larger than
+ * bd.ke_growth times the kinetic energy at the start of the interval counts as a strike,
+ * and bd.ke_strikes consecutive strikes -> DEM_EUNSTABLE. (The contacts' elastic energy is
+ * not in the balance: when a wall backs off from a compressed bed the released elastic
+ * energy does work on the wall; with the work counted signed, that outflow read as a gain
+ * while the kinetic energy stood still or fell.) (Elastic energy released by overlaps present at the
  * start is such a gain too, but it grows like a power of time, whose ratio between
  * consecutive intervals soon falls below 1 + ke_growth; an unstable time step makes the
  * energy grow geometrically, the same ratio interval after interval. The dense benchmark bed,
@@ -334,7 +338,12 @@ int dem_sim_run(dem_sim *s, long nsteps, dem_err *err) {
           }
           break;
         }
-        double gain = ke - ke_prev - ((epot_prev - epot) + (work - work_prev));
+        /* the gain not paid for by gravity or the walls; energy the particles give away
+         * (climbing, pushing a retreating wall) pays for nothing, so the gain is never
+         * more than the kinetic energy's own growth (a bed at rest under a backing-off
+         * servo piston released elastic energy into it and was called unstable) */
+        double input = (epot_prev - epot) + (work - work_prev);
+        double gain = ke - ke_prev - fmax(input, 0.0);
         if (ke > s->bd.ke_floor && gain > s->bd.ke_growth * ke_prev) my_strikes++;
         else my_strikes = 0;
         if (my_strikes >= s->bd.ke_strikes) {
