@@ -624,9 +624,15 @@ static int study_speed(const opts *o) {
     /* the combination the one-at-a-time results suggest for the harness (docs) */
     set_v(&vs[nv++], "combo_s0.01_g*0.1_dtf0.4", "candidate", 0.01, 0.1, 0.4, die, bed, ind,
           hr);
-    /* the tables' stiffness is unaffordable at gamma* 0.05: x1 against x0.1 at gamma* 0.2 */
+    /* dem-validate's own default scene (x0.01, gamma* 0.1, dt 0.2, validate/cases.c): its
+       parts agreed one at a time, the combination itself must be measured */
+    set_v(&vs[nv++], "default_s0.01_g*0.1", "candidate", 0.01, 0.1, dt_ref, die, bed, ind, hr);
+    /* the tables' stiffness: x1 against x0.1 at gamma* 0.2 (cheap) and at the reference's
+       gamma* 0.05 (~3x the reference's steps), so that a stiffness x rate interaction can
+       be told from a stiffness bias */
     set_v(&vs[nv], "scale1_g*0.2", "stiffness", 1.0, 0.2, dt_ref, die, bed, ind, hr);
     vs[nv++].pair = "g*0.2";
+    set_v(&vs[nv++], "scale1", "stiffness", 1.0, g_ref, dt_ref, die, bed, ind, hr);
     set_v(&vs[nv++], "die12", "die", s_ref, g_ref, dt_ref, 12, bed, ind, hr);
     set_v(&vs[nv++], "dtf0.1", "dt", s_ref, g_ref, 0.1, die, bed, ind, hr);
   }
@@ -700,36 +706,40 @@ static int study_stability(const opts *o) {
   return vs[0].rc || !isfinite(vs[0].H_mean) ? EXIT_RUN_ : EXIT_OK_;
 }
 
-/* Replicate beds (fill seeds) at the reference stiffness and at x0.01, on the speed scene:
- * the bed-to-bed spread of the plateau mean against the within-run standard error, and the
- * stiffness effect judged from the spread of replicates (dem_replicates_mean,
- * dem_compare_means_t with k - 1 degrees of freedom). */
+/* Replicate beds (fill seeds) at the tables' stiffness (x1), the speed study's reference
+ * (x0.1) and x0.01, on the speed scene: the bed-to-bed spread of the plateau mean against
+ * the within-run standard error, and the stiffness effect judged from the spread of
+ * replicates (dem_replicates_mean, dem_compare_means_t with k - 1 degrees of freedom). Every
+ * group starts at seed 1, so the study stands on its own (seed 1 of x0.1 and x1 repeat the
+ * speed study's `reference` and `scale1`, bit-identical on one thread). */
+#define NSCALE_ 3
 static int study_replicates(const opts *o) {
   variant vs[MAXV];
   int nv = 0;
   const double lo = 0.1;
   double die = 10, bed = 6, ind = 6, hr = 0.3, g = 0.05, dtf = 0.2;
-  int k_lo = 5, k_ref = 3;
-  if (o->quick) die = 6, bed = 4, ind = 3, g = 0.5, dtf = 0.4, k_ref = 2, k_lo = 2;
-  static const double scales[2] = {0.1, 0.01};
+  /* beds per group, cheapest group first (the budget skips the tail): x0.01, x0.1, x1 */
+  static const double scales[NSCALE_] = {0.01, 0.1, 1.0};
+  static const char *const gname[NSCALE_] = {"x0.01", "x0.1", "x1"};
+  int kbeds[NSCALE_] = {5, 5, 3};
+  if (o->quick) die = 6, bed = 4, ind = 3, g = 0.5, dtf = 0.4, kbeds[0] = kbeds[1] = 2,
+                kbeds[2] = 0;
   char name[48];
-  /* the cheap x0.01 beds first (seed 1 the comparison reference of the table), then the
-   * x0.1 beds 2..k_ref: the budget skips the tail; seed 1 of x0.1 is the speed study's
-   * reference (bit-identical on one thread) and is not repeated here */
-  for (int a = 1; a >= 0; a--)
-    for (int k = a ? 1 : 2; k <= (a ? k_lo : k_ref); k++) {
+  for (int a = 0; a < NSCALE_; a++)
+    for (int k = 1; k <= kbeds[a]; k++) {
       snprintf(name, sizeof name, "s%g_seed%d", scales[a], k);
-      set_v(&vs[nv], name, a ? "x0.01" : "x0.1", scales[a], g, dtf, die, bed, ind, hr);
+      set_v(&vs[nv], name, gname[a], scales[a], g, dtf, die, bed, ind, hr);
       vs[nv++].seed = (unsigned long)k;
     }
   double t0 = now_wall();
   run_all(vs, nv, 0, o, t0, lo);
   json_t *root = finish(vs, nv, 0, "replicates", o, t0, lo);
   json_t *grp = json_object();
-  double m[2] = {NAN, NAN}, se[2] = {NAN, NAN}, nu[2] = {1, 1};
-  for (int a = 0; a < 2; a++) {
+  double m[NSCALE_], se[NSCALE_], nu[NSCALE_];
+  for (int a = 0; a < NSCALE_; a++) {
     double means[MAXV], wse = 0.0;
     size_t k = 0;
+    m[a] = se[a] = NAN, nu[a] = 1.0;
     for (int i = 0; i < nv; i++)
       if (vs[i].scale == scales[a] && vs[i].ran && !vs[i].rc && isfinite(vs[i].H_mean)) {
         means[k++] = vs[i].H_mean;
@@ -746,13 +756,18 @@ static int study_replicates(const opts *o) {
       json_object_set_new(gj, "H_sd_between_beds", num(se[a] * sqrt((double)k)));
       json_object_set_new(gj, "H_se_within_rms", num(sqrt(wse / (double)k)));
     }
-    json_object_set_new(grp, a ? "x0.01" : "x0.1", gj);
+    json_object_set_new(grp, gname[a], gj);
   }
-  dem_comparison cmp;
-  dem_err e;
-  if (isfinite(m[0]) && isfinite(m[1]) &&
-      dem_compare_means_t(m[1], se[1], nu[1], m[0], se[0], nu[0], 0.05, DEM_TEST_TWO_SIDED,
-                          &cmp, &e) == DEM_OK) {
+  /* each scaled group against the tables' stiffness and x0.01 against x0.1 (Welch t) */
+  static const int pairs[3][2] = {{0, 1}, {1, 2}, {0, 2}};
+  for (int p = 0; p < 3; p++) {
+    int i = pairs[p][0], j = pairs[p][1];
+    dem_comparison cmp;
+    dem_err e;
+    if (!isfinite(m[i]) || !isfinite(m[j]) ||
+        dem_compare_means_t(m[i], se[i], nu[i], m[j], se[j], nu[j], 0.05, DEM_TEST_TWO_SIDED,
+                            &cmp, &e) != DEM_OK)
+      continue;
     json_t *c = json_object();
     json_object_set_new(c, "diff", num(cmp.diff));
     json_object_set_new(c, "se", num(cmp.se));
@@ -760,7 +775,9 @@ static int study_replicates(const opts *o) {
     json_object_set_new(c, "t_crit", num(cmp.z_crit));
     json_object_set_new(c, "p", num(cmp.p));
     json_object_set_new(c, "different", json_boolean(cmp.different));
-    json_object_set_new(grp, "x0.01_vs_x0.1", c);
+    char key[32];
+    snprintf(key, sizeof key, "%s_vs_%s", gname[i], gname[j]);
+    json_object_set_new(grp, key, c);
   }
   json_object_set_new(root, "groups", grp);
   int rc = write_outputs(o->out, "study_replicates", root, vs, nv);
