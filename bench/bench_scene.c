@@ -354,6 +354,15 @@ static json_t *variant_json(const variant *v) {
   json_object_set_new(o, "max_overlap_frac_indent", num(v->max_ovl_indent));
   json_object_set_new(o, "ke_peak_indent", num(v->ke_peak));
   json_object_set_new(o, "phi", num(v->phi));
+  if (!v->ran) { /* skipped (budget, --only): nothing was measured, not zeros */
+    static const char *const measured[] = {
+        "status", "status_name", "status_text", "particles", "dt", "steps", "sim_time",
+        "stage_sim_time", "wall_s", "cpu_s", "H_mean", "H_se", "H_sd", "H_n", "H_tau",
+        "H_se_reliable", "dev_ref_se", "z", "within", "z_pair", "within_pair",
+        "max_overlap_frac", "max_overlap_frac_indent", "ke_peak_indent", "phi"};
+    for (size_t i = 0; i < sizeof measured / sizeof *measured; i++)
+      json_object_set_new(o, measured[i], json_null());
+  }
   return o;
 }
 
@@ -367,6 +376,12 @@ static int write_csv(const char *path, const variant *vs, int nv) {
           "max_overlap_frac_indent,ke_peak_indent,phi,pair,z_pair\n");
   for (int i = 0; i < nv; i++) {
     const variant *v = &vs[i];
+    if (!v->ran) { /* skipped: the settings, the category, and empty measurements */
+      fprintf(f, "%s,%s,%g,%g,%.6g,%g,%g,%g,%g,%g,,%s,,,,,,,,,,,,,,,,,,%s,\n", v->name, v->group,
+              v->scale, v->gstar, rate_of(v->gstar), v->dtf, v->die, v->bed, v->ind, v->hr,
+              v->category ? v->category : "skipped", v->pair ? v->pair : "");
+      continue;
+    }
     fprintf(f,
             "%s,%s,%g,%g,%.6g,%g,%g,%g,%g,%g,%s,%s,%zu,%.4g,%ld,%.5g,%.2f,%.2f,%.6g,%.4g,%zu,"
             "%.3g,%.3g,%.3g,%d,%.4g,%.4g,%.4g,%.4g,%s,%.3g\n",
