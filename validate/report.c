@@ -445,9 +445,11 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
      * are not recomputed by this invocation, which the caption says */
     static const char *fig[][2] = {
         {"study_speed.png", "plateau H and its standard error against CPU time: stiffness "
-                            "scale, gamma*, time-step factor, die (docs/study/, 2026-11-22)"},
+                            "scale, gamma*, time-step factor, die (docs/study/, 2026-12-02, "
+                            "beds at rest)"},
         {"study_stability.png", "stability map: where stiffness scale, time-step factor and "
-                                "rate break the answer (docs/study/, 2026-11-22)"}};
+                                "rate break the answer (docs/study/, 2026-12-02, beds at "
+                                "rest)"}};
     for (int i = 0; i < 2; i++) {
       char src[700];
       snprintf(src, sizeof src, "%s/docs/study/%s", VH_SOURCE_DIR, fig[i][0]);
