@@ -736,7 +736,7 @@ static int study_replicates(const opts *o) {
   /* beds per group, cheapest group first (the budget skips the tail): x0.01, x0.1, x1 */
   static const double scales[NSCALE_] = {0.01, 0.1, 1.0};
   static const char *const gname[NSCALE_] = {"x0.01", "x0.1", "x1"};
-  int kbeds[NSCALE_] = {5, 5, 3};
+  int kbeds[NSCALE_] = {5, 5, 5};
   if (o->quick) die = 6, bed = 4, ind = 3, g = 0.5, dtf = 0.4, kbeds[0] = kbeds[1] = 2,
                 kbeds[2] = 0;
   char name[48];
