@@ -15,14 +15,15 @@
  * energy over the interval, beyond the energy supplied by gravity and the walls (counted
  * only when positive: energy leaving the particles explains no gain), larger than
  * bd.ke_growth times the kinetic energy at the start of the interval counts as a strike,
- * and bd.ke_strikes consecutive strikes -> DEM_EUNSTABLE. (The contacts' elastic energy is
+ * and bd.ke_strikes consecutive strikes -> DEM_EUNSTABLE. The contacts' elastic energy is
  * not in the balance: when a wall backs off from a compressed bed the released elastic
  * energy does work on the wall; with the work counted signed, that outflow read as a gain
- * while the kinetic energy stood still or fell.) (Elastic energy released by overlaps present at the
- * start is such a gain too, but it grows like a power of time, whose ratio between
- * consecutive intervals soon falls below 1 + ke_growth; an unstable time step makes the
- * energy grow geometrically, the same ratio interval after interval. The dense benchmark bed,
- * starting at rest, strikes 5 times in a row with ke_growth = 0.5: hence 1 and 10.)
+ * while the kinetic energy stood still or fell. (Elastic energy released by overlaps
+ * present at the start is such a gain too, but it grows like a power of time, whose ratio
+ * between consecutive intervals soon falls below 1 + ke_growth; an unstable time step makes
+ * the energy grow geometrically, the same ratio interval after interval. The dense
+ * benchmark bed, starting at rest, strikes 5 times in a row with ke_growth = 0.5: hence 1
+ * and 10.)
  */
 #include <math.h>
 #include <string.h>
