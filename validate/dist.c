@@ -34,7 +34,8 @@
  * piston of a bed deeper than the reference is not counted: the 50 d bed at gamma* 0.04
  * took 2837 s on the AMD VM against 1135 s estimated, the usual ~2.5x of that machine, as
  * settling dominates); a run costs particles x steps ~
- * die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r sqrt(k) / (gamma* dt_scale).
+ * die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r sqrt(k) / (gamma* dt_scale). Both x
+ * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2).
  */
 #include <math.h>
 #include <stdio.h>
@@ -49,13 +50,14 @@
 
 #include "vh.h"
 
-static double bed_cost(const vh_bed *b) {
-  return 454.0 * (b->die * b->die * b->bed) / (45.0 * 45.0 * 20.0) * sqrt(b->kscale / 0.01);
+static double bed_cost(const vh *h, const vh_bed *b) {
+  return 454.0 * (b->die * b->die * b->bed) / (45.0 * 45.0 * 20.0) * sqrt(b->kscale / 0.01) *
+         (0.2 / h->tier->dt_factor);
 }
 
 static double run_cost(const vh *h, const vh_bed *b, const vh_indent *in) {
   return 195.0 * (b->die * b->die) / (45.0 * 45.0) * (in->D / 16.0) * (h->tier->h_end / 0.5) *
-         (0.1 / in->gamma_star) * sqrt(b->kscale / 0.01) / in->dt_scale;
+         (0.1 / in->gamma_star) * sqrt(b->kscale / 0.01) * (0.2 / h->tier->dt_factor) / in->dt_scale;
 }
 
 static void wait_all(const vh *h) {
@@ -226,7 +228,7 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
   const double tf = h->threads == 1 ? 1.9 : 1.0;
   for (int i = 0; i < nb; i++) {
     beds[i] = h->beds[i];
-    cost[i] = tf * bed_cost(&beds[i]);
+    cost[i] = tf * bed_cost(h, &beds[i]);
     mask[i] = beds[i].cases;
   }
   for (int j = 0; j < nr; j++) {

@@ -3,6 +3,7 @@
  *   dem-validate [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
  *                [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]
  *                [--plan] [--no-run-cache] [--budget S] [--materials SET]
+ *                [--dt-factor F] [--stiffness-scale K]
  *   mpirun -n R dem-validate ...   beds and runs distributed over R ranks (validate/dist.c)
  *
  * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
@@ -33,6 +34,7 @@ static void usage(FILE *f) {
           "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
           "          [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]\n"
           "          [--plan] [--no-run-cache] [--budget S] [--materials SET]\n"
+          "          [--dt-factor F] [--stiffness-scale K]\n"
           "       mpirun -n R %s ...   (independent beds and runs on R ranks)\n"
           "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
           "             same geometry, all eleven cases, ~30 min), full (thesis scale, all\n"
@@ -211,12 +213,14 @@ int main(int argc, char **argv) {
                                  {"no-run-cache", no_argument, 0, 'N'},
                                  {"budget", required_argument, 0, 'T'},
                                  {"materials", required_argument, 0, 'M'},
+                                 {"dt-factor", required_argument, 0, 'D'},
+                                 {"stiffness-scale", required_argument, 0, 'K'},
                                  {"help", no_argument, 0, 'h'},
                                  {"version", no_argument, 0, 'V'},
                                  {0, 0, 0, 0}};
   const char *tier = "quick", *cases = NULL, *out = NULL, *beds = NULL, *baseline = NULL;
   dem_scene_materials materials = DEM_SCENE_PASHA;
-  double threads = 2, level = 0.05, budget = 0;
+  double threads = 2, level = 0.05, budget = 0, dt_factor = 0, kscale = 0;
   int json = 0, list = 0, verbose = 0, plan_only = 0, no_cache = 0, o;
   dem_err err = {0};
   opterr = 0;
@@ -253,6 +257,13 @@ int main(int argc, char **argv) {
       materials = (dem_scene_materials)k;
       break;
     }
+    case 'D':
+      if (cli_parse_double("--dt-factor", optarg, 0.01, 1, &dt_factor, &err)) goto usage_error;
+      break;
+    case 'K':
+      if (cli_parse_double("--stiffness-scale", optarg, 1e-3, 1, &kscale, &err))
+        goto usage_error;
+      break;
     case 'h': usage(stdout); return CLI_EXIT_OK;
     case 'V': cli_print_version(prog); return CLI_EXIT_OK;
     default: cli_getopt_error(argv, &err); goto usage_error;
@@ -304,6 +315,23 @@ int main(int argc, char **argv) {
     return CLI_EXIT_RUN;
   }
   h->tier = t;
+  if (dt_factor > 0 || kscale > 0) {
+    /* the tier's table entry with the numerics the user chose; beds and runs carry dt and
+       the stiffness scale in their names (run.c), so they never mix with the tier's own */
+    h->tier_own = *t;
+    int n = 0;
+    if (dt_factor > 0) {
+      h->tier_own.dt_factor = dt_factor;
+      n += snprintf(h->overrides + n, sizeof h->overrides - (size_t)n, "--dt-factor %g",
+                    dt_factor);
+    }
+    if (kscale > 0) {
+      h->tier_own.stiffness_scale = h->tier_own.rate_stiffness_scale = kscale;
+      snprintf(h->overrides + n, sizeof h->overrides - (size_t)n, "%s--stiffness-scale %g",
+               n ? " " : "", kscale);
+    }
+    h->tier = &h->tier_own;
+  }
   h->materials = materials;
   h->threads = (int)threads;
   h->nranks = 1;

@@ -340,10 +340,11 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
   d_para(&d, "%s on %s, %d MPI rank(s) x %d threads; wall time %.0f s (%.1f min). The beds "
              "and runs took %.0f s (%.1f min) when they were made (%d of %d runs from the "
              "run cache). Cases: %d PASS, %d FAIL, %d "
-             "other. Produced by `dem-validate --tier %s` (docs/validation.md explains the "
-             "cases, criteria and settings).",
+             "other. Produced by `dem-validate --tier %s%s%s` (docs/validation.md explains the "
+             "cases, criteria and settings%s).",
          when, mach, h->nranks, h->threads, wall_s, wall_s / 60, cost, cost / 60, ncached,
-         h->nruns, npass, nfail, nother, t->name);
+         h->nruns, npass, nfail, nother, t->name, h->overrides[0] ? " " : "", h->overrides,
+         h->overrides[0] ? "; the tier's numerics are overridden here" : "");
   d_para(&d, "Scene: %s with "
              "every stiffness scaled by %g (by %g on the beds of the high-rate cases 10 and "
              "11), die %g d, reference bed %g d, reference sphere "
@@ -494,6 +495,8 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
   for (int i = 0; i < nres; i++) cost += res[i].cost_s;
   json_object_set_new(root, "cost_s", jnum(cost));
   json_object_set_new(root, "level", jnum(h->level));
+  json_object_set_new(root, "overrides",
+                      h->overrides[0] ? json_string(h->overrides) : json_null());
   json_object_set_new(root, "settings",
                       json_pack("{s:s,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "materials",
                                 dem_scene_materials_names[h->materials],
