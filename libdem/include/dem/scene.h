@@ -58,7 +58,8 @@ typedef struct dem_scene_config {
   double strain_rate;     /* 1/s, piston speed / bed height (1 1/s in the thesis) */
   double servo_band;      /* -, constant speed up to (1 - servo_band) sigma_pre, then the
                              servo (0.1) */
-  double servo_steps;     /* servo time constant in steps for the stiffest possible bed
+  double servo_steps;     /* servo time constant for the stiffest possible bed, in steps of
+                             the reference step 0.2 sqrt(m_min / k_max) at every dt_factor
                              (20; see docs/scene.md) */
   double hold_time;       /* s, hold at sigma_pre with the servo before unloading */
   double hold_tol;        /* -, the stress must be within this of sigma_pre (0.02) */

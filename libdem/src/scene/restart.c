@@ -546,10 +546,9 @@ dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
       dem_err_set(err, err->code, "%s: override: %s", path, msg);
       goto fail;
     }
-    /* inside the consolidation servo: its gain from the new k_max and dt (scene.c) */
+    /* inside the consolidation servo: its gain from the new k_max (scene.c) */
     if (sc->reached == DEM_SCENE_STAGE_SETTLED && sc->sub == 2) {
-      const double A = M_PI * sc->die_radius * sc->die_radius, dm = sc->cfg.d_mean;
-      sc->gain = 1.0 / (A / (dm * dm) * sc->k_max * sc->cfg.servo_steps * sc->dt);
+      sc->gain = scene_servo_gain(sc);
       if (dem_sim_set_wall_servo(sc->sim, sc->w_piston, sc->f_set, sc->gain, sc->v_piston,
                                  err))
         goto fail;

@@ -221,6 +221,27 @@ int scene_interactions(dem_scene *sc, dem_err *err) {
   return dem_sim_set_dt(sc->sim, sc->dt, err);
 }
 
+/* Servo gain 1 / (K_bound servo_steps dt_servo): K_bound = (one contact per d^2 of piston)
+ * x k_max, the stiffest bed the piston can meet; dt_servo = SERVO_DT_FACTOR sqrt(m_min /
+ * k_max), the step at the thesis' factor 0.2 whatever the run's dt_factor, so the servo's
+ * response is a physical time and the consolidation one protocol at every time step (with
+ * the run's own dt, a larger step made a slower servo and a longer hold: docs/scene.md).
+ * Stable for the explicit step: the loop gain per step, gain K dt, is at most
+ * dt / (servo_steps dt_servo) = dt_factor / (SERVO_DT_FACTOR servo_steps), 0.25 at
+ * dt_factor 1 with servo_steps 20. */
+#define SERVO_DT_FACTOR 0.2
+double scene_servo_gain(const dem_scene *sc) {
+  const dem_scene_config *c = &sc->cfg;
+  const double A = M_PI * sc->die_radius * sc->die_radius;
+  const double K_bound = A / (c->d_mean * c->d_mean) * sc->k_max;
+  /* at the reference factor the run's own step, so that the gain (and every bed made at
+   * 0.2) is bit for bit the earlier rule's; x / 0.2 * 0.2 need not round back to x */
+  const double dt_servo = c->dt_factor == SERVO_DT_FACTOR
+                              ? sc->dt
+                              : sc->dt * (SERVO_DT_FACTOR / c->dt_factor);
+  return 1.0 / (K_bound * c->servo_steps * dt_servo);
+}
+
 dem_scene *dem_scene_create(const dem_scene_config *c, const dem_scene_hooks *h, dem_err *err) {
   if (dem_scene_config_check(c, err)) return NULL;
   dem_scene *sc = calloc(1, sizeof *sc);
@@ -546,15 +567,13 @@ int dem_scene_consolidate(dem_scene *sc, dem_err *err) {
       }
       if (sim_time(sc) - sc->t0 > sc->t_max) break;
     }
-    /* Phase 2: proportional servo, v = gain (F - f_c) capped at the loading speed, gain =
-     * 1 / (K_bound servo_steps dt) with K_bound = (one contact per d^2 of piston) x k_max,
-     * the stiffest bed the piston can meet: stable for the explicit step whatever the bed.
+    /* Phase 2: proportional servo, v = gain (F - f_c) capped at the loading speed, gain
+     * from scene_servo_gain: stable for the explicit step whatever the bed.
      * (A gain from the measured loading stiffness over the second half of the loading,
      * (F - f_half) / (z_half - z), 10x for the unloading branch at 200 dt, made the piston
      * and the bed oscillate between 1 and 15 kPa: the bed's own dynamics, not the step,
      * then limit the gain.) Hold within hold_tol for hold_time. */
-    const double K_bound = A / (c->d_mean * c->d_mean) * sc->k_max;
-    sc->gain = 1.0 / (K_bound * c->servo_steps * sc->dt);
+    sc->gain = scene_servo_gain(sc);
     if ((rc = dem_sim_set_wall_servo(sc->sim, sc->w_piston, F, sc->gain, sc->v_piston, err)))
       return rc;
     sc->t_in = -1.0; /* time the band was entered */

@@ -49,6 +49,8 @@ struct dem_scene {
 /* scene.c: the three interactions from cfg.pp/pw/pi (stiffness_scale applied), setting
  * sc->k_max and sc->dt (the engine's dt too); the time-series table. */
 int scene_interactions(dem_scene *sc, dem_err *err);
+/* scene.c: the consolidation servo's gain (m/(N s)) from k_max and the reference step. */
+double scene_servo_gain(const dem_scene *sc);
 dem_table *scene_series_create(dem_err *err);
 
 int scene_fill(dem_scene *sc, dem_err *err);
