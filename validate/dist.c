@@ -35,7 +35,9 @@
  * took 2837 s on the AMD VM against 1135 s estimated, the usual ~2.5x of that machine, as
  * settling dominates); a run costs particles x steps ~
  * die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r sqrt(k) / (gamma* dt_scale). Both x
- * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2).
+ * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2). The bed constant
+ * predates the consolidation without overshoot (2026-12-03), which simulates the quick and
+ * smoke beds' preparation 2-33 % longer (docs/scene.md); not yet re-measured at 45 d.
  */
 #include <math.h>
 #include <stdio.h>

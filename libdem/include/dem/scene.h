@@ -56,8 +56,8 @@ typedef struct dem_scene_config {
   /* consolidation */
   double sigma_pre;       /* Pa, pre-consolidation stress (10 kPa) */
   double strain_rate;     /* 1/s, piston speed / bed height (1 1/s in the thesis) */
-  double servo_band;      /* -, constant speed up to (1 - servo_band) sigma_pre, then the
-                             servo (0.1) */
+  double servo_band;      /* -, constant speed up to sigma_pre, then the servo, whose set
+                             point stays within F (1 +- servo_band) (0.1) */
   double servo_steps;     /* servo time constant for the stiffest possible bed, in steps of
                              the reference step 0.2 sqrt(m_min / k_max) at every dt_factor
                              (20; see docs/scene.md) */

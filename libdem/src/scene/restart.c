@@ -27,7 +27,10 @@
 /* 2 (2026-12-02): the unload stage ends with the bed at rest (its relax phase, scene.c; the
  * state gains t_rest); a version-1 unloaded bed was saved while it flew off the base, so it
  * is not read. */
-#define SCENE_BLOB_VERSION 2
+/* 3 (2026-12-03): the consolidation loads at constant strain rate up to sigma_pre and holds
+ * it with a servo whose set-point correction cannot wind up (the state gains ki); a version-2
+ * bed was pre-consolidated to 12-13.5 kPa instead of 10 (docs/scene.md), so it is not read. */
+#define SCENE_BLOB_VERSION 3
 
 enum { T_F64 = 0, T_I64 = 1, T_BYTES = 2 };
 
@@ -173,7 +176,7 @@ int dem_scene_save(const dem_scene *sc, const char *path, dem_err *err) {
                       sc->k_max, sc->m_mean, sc->bed_top, sc->phi, sc->surface,
                       sc->v_piston, sc->v_ind, sc->ind_r, sc->next_snap, sc->t0,
                       sc->t_max, sc->z_half, sc->f_half, sc->t_in, sc->f_set, sc->gain,
-                      sc->t_rest};
+                      sc->t_rest, sc->ki};
   rec(&w, "state", T_F64, sizeof d / sizeof d[0], d);
   const long nr = dem_table_nrows(sc->series);
   const int nc = dem_table_ncols(sc->series);
@@ -495,15 +498,15 @@ dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
   sc->mat_p = (int)idx[0], sc->mat_w = (int)idx[1], sc->mat_i = (int)idx[2];
   sc->w_base = (int)idx[3], sc->w_die = (int)idx[4], sc->w_piston = (int)idx[5];
   sc->w_ind = (int)idx[6];
-  if (!(r = find(&rb, "state", T_F64, 22))) goto fail;
-  double d[22];
+  if (!(r = find(&rb, "state", T_F64, 23))) goto fail;
+  double d[23];
   memcpy(d, r->data, sizeof d);
   sc->die_radius = d[0], sc->fill_top = d[1], sc->mean_d = d[2], sc->sd_d = d[3];
   sc->dt = d[4], sc->k_max = d[5], sc->m_mean = d[6], sc->bed_top = d[7], sc->phi = d[8];
   sc->surface = d[9], sc->v_piston = d[10], sc->v_ind = d[11], sc->ind_r = d[12];
   sc->next_snap = d[13], sc->t0 = d[14], sc->t_max = d[15], sc->z_half = d[16];
   sc->f_half = d[17], sc->t_in = d[18], sc->f_set = d[19], sc->gain = d[20];
-  sc->t_rest = d[21];
+  sc->t_rest = d[21], sc->ki = d[22];
   int64_t nc = 0, nr = 0;
   if (get_i(&rb, "series_ncols", &nc) || get_i(&rb, "series_nrows", &nr)) goto fail;
   if (!(sc->series = scene_series_create(err))) goto fail;
@@ -548,7 +551,9 @@ dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
     }
     /* inside the consolidation servo: its gain from the new k_max (scene.c) */
     if (sc->reached == DEM_SCENE_STAGE_SETTLED && sc->sub == 2) {
+      const double g0 = sc->gain;
       sc->gain = scene_servo_gain(sc);
+      sc->ki *= sc->gain / g0; /* ki = t_sample gain K / 4 (scene_servo_ki) */
       if (dem_sim_set_wall_servo(sc->sim, sc->w_piston, sc->f_set, sc->gain, sc->v_piston,
                                  err))
         goto fail;

@@ -413,6 +413,27 @@ static long sample_steps(const dem_scene *sc) {
   return steps < 1 ? 1 : steps;
 }
 
+/* Integral rate of the consolidation servo, the fraction of the force error (F - f_c) added
+ * to the set point per sample (-). With the bed a spring of stiffness K under a piston at
+ * v = gain (f_set - f_c), the force follows f' = (f_set - f) / tau_P, tau_P = 1 / (gain K);
+ * with f_set' = (F - f) / T_i the loop is tau_P f'' + f' + f / T_i = F / T_i, critically
+ * damped at T_i = 4 tau_P. K is the bed's loading stiffness over the second half of phase 1,
+ * (f1 - f_half) / (z_half - z1), N/m (piston z in m, forces in N); the unloading branch is
+ * stiffer, which only damps the loop more. Without a usable K (no half-load point: the
+ * stress jumped past half of sigma_pre within one check; or K not positive) the stiffest
+ * bed, K_bound, is assumed, which gives the cap: at most 0.5 per sample, the old rule's rate,
+ * then bounded only by the clamp of f_set to F (1 +- servo_band). */
+double scene_servo_ki(const dem_scene *sc, double z_half, double f_half, double z1, double f1) {
+  const dem_scene_config *c = &sc->cfg;
+  const double A = M_PI * sc->die_radius * sc->die_radius;
+  const double K_bound = A / (c->d_mean * c->d_mean) * sc->k_max;
+  double K = (f1 - f_half) / (z_half - z1);
+  if (!(K > 0.0) || !isfinite(K) || K > K_bound) K = K_bound;
+  const double tau_p = 1.0 / (scene_servo_gain(sc) * K);
+  const double ki = (double)sample_steps(sc) * sc->dt / (4.0 * tau_p);
+  return fmin(ki, 0.5);
+}
+
 /* Advance n steps (n <= the sample interval); a row is recorded whenever a sample
  * interval has elapsed since the last row. */
 static int advance(dem_scene *sc, long n, double frac, dem_err *err) {
@@ -547,8 +568,9 @@ int dem_scene_consolidate(dem_scene *sc, dem_err *err) {
     double dp[3] = {0, 0, top + 0.05 * c->d_mean - pw.p[2]};
     if (dp[2] < 0 && (rc = dem_sim_move_wall(sc->sim, sc->w_piston, dp, err))) return rc;
     sc->v_piston = c->strain_rate * sc->bed_top;
-    /* Phase 1: constant velocity (constant strain rate) until the stress reaches
-     * (1 - servo_band) sigma_pre, checked every few steps. */
+    /* Phase 1: constant velocity (constant strain rate) until the stress reaches sigma_pre,
+     * as the thesis loads its beds (physics.md: "consolidated by a flat piston at constant
+     * strain rate to a pre-consolidation stress of 10 kPa"), checked every few steps. */
     double v[3] = {0, 0, -sc->v_piston};
     if ((rc = dem_sim_set_wall_velocity(sc->sim, sc->w_piston, v, err))) return rc;
     sc->t0 = sim_time(sc);
@@ -558,7 +580,7 @@ int dem_scene_consolidate(dem_scene *sc, dem_err *err) {
   }
   if (sc->sub == 1) {
     const long sub = 10;
-    while (sc->resume || piston_stress(sc) < (1.0 - c->servo_band) * c->sigma_pre) {
+    while (sc->resume || piston_stress(sc) < c->sigma_pre) {
       if ((rc = advance(sc, sub, fmin(piston_stress(sc) / c->sigma_pre, 1.0), err))) return rc;
       if (isnan(sc->z_half) && piston_stress(sc) >= 0.5 * c->sigma_pre) {
         dem_sim_wall(sc->sim, sc->w_piston, &pw);
@@ -567,13 +589,22 @@ int dem_scene_consolidate(dem_scene *sc, dem_err *err) {
       }
       if (sim_time(sc) - sc->t0 > sc->t_max) break;
     }
-    /* Phase 2: proportional servo, v = gain (F - f_c) capped at the loading speed, gain
-     * from scene_servo_gain: stable for the explicit step whatever the bed.
-     * (A gain from the measured loading stiffness over the second half of the loading,
-     * (F - f_half) / (z_half - z), 10x for the unloading branch at 200 dt, made the piston
-     * and the bed oscillate between 1 and 15 kPa: the bed's own dynamics, not the step,
-     * then limit the gain.) Hold within hold_tol for hold_time. */
+    /* Phase 2: hold sigma_pre with the engine's proportional servo, v = gain (f_set - f_c)
+     * capped at the loading speed, gain from scene_servo_gain: stable for the explicit step
+     * whatever the bed. (A gain from the measured loading stiffness, 10x for the unloading
+     * branch at 200 dt, made the piston and the bed oscillate between 1 and 15 kPa: the
+     * bed's own dynamics, not the step, then limit the gain.) Hold within hold_tol for
+     * hold_time. The set point f_set is corrected by an integral term (below) whose rate
+     * follows from the bed's loading stiffness measured over the second half of phase 1. */
     sc->gain = scene_servo_gain(sc);
+    dem_sim_wall(sc->sim, sc->w_piston, &pw);
+    sc->ki = scene_servo_ki(sc, sc->z_half, sc->f_half, pw.p[2], piston_stress(sc) * A);
+    /* The hold's own time limit: the proportional term's time constant tau_P = t_sample /
+     * (4 ki), not the loading's 100% strain time, sets how long it may take (a fast
+     * loading of a small bed, gamma* 0.5 on 113 particles, needs ~2x 1/strain_rate); 20
+     * tau_P (at least 1/strain_rate) after the switch: give up. */
+    sc->t_max = sim_time(sc) - sc->t0 +
+                fmax(1.0 / c->strain_rate, 20.0 * (double)sample_steps(sc) * sc->dt / (4.0 * sc->ki));
     if ((rc = dem_sim_set_wall_servo(sc->sim, sc->w_piston, F, sc->gain, sc->v_piston, err)))
       return rc;
     sc->t_in = -1.0; /* time the band was entered */
@@ -584,8 +615,13 @@ int dem_scene_consolidate(dem_scene *sc, dem_err *err) {
     if ((rc = chunk(sc, fmin(piston_stress(sc) / c->sigma_pre, 1.0), err))) return rc;
     const double t = sim_time(sc), s = piston_stress(sc);
     /* integral action at the sample rate: a creeping (plastic) bed leaves a proportional
-     * servo below its target; move the set point by half the remaining error */
-    sc->f_set += 0.5 * (F - s * A);
+     * servo ~2-4 % below its target. Rate ki from scene_servo_ki (critical damping of the
+     * PI loop), the set point kept within F (1 +- servo_band): it cannot wind up. (Until
+     * 2026-12-03 half the error per sample, a time constant of ~0.2 ms against the
+     * proportional term's ~18 ms, applied from 0.9 sigma_pre on: it wound f_set up to ~2.8 F
+     * and the beds saw 12-13.5 kPa; docs/scene.md.) */
+    sc->f_set += sc->ki * (F - s * A);
+    sc->f_set = fmin(fmax(sc->f_set, (1.0 - c->servo_band) * F), (1.0 + c->servo_band) * F);
     if ((rc = dem_sim_set_wall_servo(sc->sim, sc->w_piston, sc->f_set, sc->gain, sc->v_piston,
                                      err)))
       return rc;
@@ -598,7 +634,8 @@ int dem_scene_consolidate(dem_scene *sc, dem_err *err) {
     if (t - sc->t0 > sc->t_max)
       return dem_err_set(err, DEM_EPHYSICS,
                          "scene consolidate: piston stress %.4g Pa has not held sigma_pre = "
-                         "%g Pa within hold_tol = %g for hold_time = %g s after %g s",
+                         "%g Pa within hold_tol = %g for hold_time = %g s after %g s (the "
+                         "loading, then max(1 / strain_rate, 20 servo time constants))",
                          s, c->sigma_pre, c->hold_tol, c->hold_time, sc->t_max);
   }
   stage_done(sc, DEM_SCENE_STAGE_CONSOLIDATED);

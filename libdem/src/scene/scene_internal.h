@@ -36,6 +36,7 @@ struct dem_scene {
                                 at rest as a whole (< 0: not at rest) */
   double z_half, f_half;     /* consolidation: piston z (m) and force (N) at half load */
   double t_in, f_set, gain;  /* servo: band entry time (s), set point (N), gain (m/(N s)) */
+  double ki;                 /* servo: integral rate, fraction of the error per sample (-) */
   int resume;                /* 1: an advance was interrupted; finish it first */
   long pending;              /* steps left of the interrupted advance */
   /* contacts and stresses (stress.c) */
@@ -51,6 +52,9 @@ struct dem_scene {
 int scene_interactions(dem_scene *sc, dem_err *err);
 /* scene.c: the consolidation servo's gain (m/(N s)) from k_max and the reference step. */
 double scene_servo_gain(const dem_scene *sc);
+/* scene.c: the servo's integral rate (-, per sample) from the loading stiffness between the
+ * half-load point (z_half m, f_half N) and the switch (z1 m, f1 N). */
+double scene_servo_ki(const dem_scene *sc, double z_half, double f_half, double z1, double f1);
 dem_table *scene_series_create(dem_err *err);
 
 int scene_fill(dem_scene *sc, dem_err *err);
