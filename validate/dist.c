@@ -37,7 +37,9 @@
  * die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r sqrt(k) / (gamma* dt_scale). Both x
  * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2). The bed constant
  * predates the consolidation without overshoot (2026-12-03), which simulates the quick and
- * smoke beds' preparation 2-33 % longer (docs/scene.md); not yet re-measured at 45 d.
+ * smoke beds' preparation 2-33 % longer and took the chapter 5 20 d bed in the 45 d die
+ * 1.67x the wall time (1807 s against 1080 s on the AMD VM, docs/scene.md); the constant
+ * is not changed until a chapter 6/7 bed is re-measured (--plan's tested figures).
  */
 #include <math.h>
 #include <stdio.h>
