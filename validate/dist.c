@@ -27,19 +27,19 @@
  * criterion it could decide, and the next invocation over the same --beds folder goes on
  * from what this one made.
  *
- * Cost estimates (s, for the order and the --plan table only; measured on the 2-core Xeon of
- * docs/validation.md with 2 threads, x1.9 for one thread: the 20 d bed in the 45 d die at
- * x0.01 454 s, the 16 d sphere to h/r 0.5 at gamma* 0.1 195 s): a bed costs ~ die^2 bed
- * sqrt(k) (particles x steps of fill, settle and consolidation, dt ~ 1/sqrt(k); the slower
- * piston of a bed deeper than the reference is not counted: the 50 d bed at gamma* 0.04
- * took 2837 s on the AMD VM against 1135 s estimated, the usual ~2.5x of that machine, as
- * settling dominates); a run costs particles x steps ~
+ * Cost estimates (s, for the order and the --plan table only; measured on the 2-core AMD EPYC
+ * VM of docs/validation.md with 2 threads on 2026-12-03, with the consolidation without
+ * overshoot, x1.9 for one thread: the 20 d bed in the 45 d die at x0.01 1936 s (settle 400 s,
+ * consolidate 952 s, unload and relax 584 s), the 16 d sphere to h/r 0.5 at gamma* 0.1
+ * 285 s): a bed costs ~ die^2 bed sqrt(k) (particles x steps of fill, settle and
+ * consolidation, dt ~ 1/sqrt(k); the slower piston of a bed deeper than the reference is not
+ * counted: the 50 d bed at gamma* 0.04 took 2.5x its estimate with the constants of before,
+ * as settling dominates); a run costs particles x steps ~
  * die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r sqrt(k) / (gamma* dt_scale). Both x
- * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2). The bed constant
- * predates the consolidation without overshoot (2026-12-03), which simulates the quick and
- * smoke beds' preparation 2-33 % longer and took the chapter 5 20 d bed in the 45 d die
- * 1.67x the wall time (1807 s against 1080 s on the AMD VM, docs/scene.md); the constant
- * is not changed until a chapter 6/7 bed is re-measured (--plan's tested figures).
+ * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2). Until 2026-12-03 the
+ * constants were 454 and 195 s (a 2-core Xeon VM, 2026-12-01): they predated the bed's relax
+ * phase and the longer hold of the consolidation without overshoot, and underestimated the
+ * full tier ~2.5-4x (docs/validation.md).
  */
 #include <math.h>
 #include <stdio.h>
@@ -55,12 +55,12 @@
 #include "vh.h"
 
 static double bed_cost(const vh *h, const vh_bed *b) {
-  return 454.0 * (b->die * b->die * b->bed) / (45.0 * 45.0 * 20.0) * sqrt(b->kscale / 0.01) *
+  return 1936.0 * (b->die * b->die * b->bed) / (45.0 * 45.0 * 20.0) * sqrt(b->kscale / 0.01) *
          (0.2 / h->tier->dt_factor);
 }
 
 static double run_cost(const vh *h, const vh_bed *b, const vh_indent *in) {
-  return 195.0 * (b->die * b->die) / (45.0 * 45.0) * (in->D / 16.0) * (h->tier->h_end / 0.5) *
+  return 285.0 * (b->die * b->die) / (45.0 * 45.0) * (in->D / 16.0) * (h->tier->h_end / 0.5) *
          (0.1 / in->gamma_star) * sqrt(b->kscale / 0.01) * (0.2 / h->tier->dt_factor) / in->dt_scale;
 }
 
@@ -282,7 +282,7 @@ int vh_distribute(vh *h, vh_cases_fn run_cases, void *user, int print_plan, dem_
       if (!done[nb + j]) todo += cost[nb + j];
     }
     printf("estimated cost: %.0f s of which %.0f s not yet done (one process, %d threads; the "
-           "constants are from a 2-core Xeon with 2 threads, see validate/dist.c%s)\n", total,
+           "constants are from a 2-core AMD EPYC VM with 2 threads, see validate/dist.c%s)\n", total,
            todo, h->threads, h->threads > 2 ? "; used as they are for more threads" : "");
     printf("estimated wall time of everything from scratch on R ranks of %d threads (beds, then "
            "runs, longest first; R x %d cores):", h->threads, h->threads);
