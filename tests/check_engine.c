@@ -943,21 +943,87 @@ START_TEST(test_servo) {
   dem_sim_set_gravity(s, (double[3]){0, 0, -9.81});
   dem_sim_set_dt(s, 1.5e-6, &err);
   dem_sim_set_skin(s, 1e-4, &err);
-  ck_assert_int_eq(dem_sim_run(s, 24000, &err), DEM_OK); /* 36 ms: approach, compaction */
-  double sum = 0.0, worst = 0.0;
+  /* 60 ms: approach, compaction, and the column's slips: under the held load it rearranges
+   * now and then (the load falls 2-4 % for ~3-6 ms and the servo brings it back: at 37-42
+   * ms since the servo reads the rate-independent load, at 48-54 ms before; both runs hold
+   * the target to 1e-4 from 57 ms on, /work/diag/servocol.c of 2026-12-03); the window
+   * (until 2026-12-03 after 36 ms) must not depend on when a slip comes. */
+  ck_assert_int_eq(dem_sim_run(s, 40000, &err), DEM_OK);
+  double sum = 0.0, worst = 0.0, sumr = 0.0;
   for (int k = 0; k < 2000; k++) {
     ck_assert_int_eq(dem_sim_run(s, 1, &err), DEM_OK);
-    double f[3];
+    double f[3], fr[3];
     dem_sim_wall_load(s, piston, f, NULL, NULL);
+    dem_sim_wall_load_rate_independent(s, piston, fr);
+    sumr += fr[2];
     sum += f[2];
     double dev = fabs(f[2] / target - 1.0);
     worst = dev > worst ? dev : worst;
   }
   if (getenv("DEM_TEST_VERBOSE"))
-    fprintf(stderr, "servo: n = %zu, mean %g N, target %g N, worst step %g\n",
-            dem_sim_particles(s)->n, sum / 2000, target, worst);
+    fprintf(stderr, "servo: n = %zu, mean %g N (ri %g), target %g N, worst step %g\n",
+            dem_sim_particles(s)->n, sum / 2000, sumr / 2000, target, worst);
   ck_assert_double_eq_tol(sum / 2000, target, 0.02 * target);
+  ck_assert_double_eq_tol(sumr / 2000, target, 0.02 * target); /* what the servo reads */
   ck_assert(worst < 0.1);
+  dem_sim_free(s);
+}
+END_TEST
+
+
+/* The servo reads the rate-independent wall load (dem_sim_wall_load_rate_independent), not
+ * the dashpots: one sphere (d = 1 mm, 2500 kg/m^3) on a base under a servo piston, linear
+ * law kn = 1000 N/m, e = 0.3 (dashpot c = 2 zeta sqrt(m kn) = 0.026 N s/m against a wall),
+ * target 0.1 N, v_max 0.5 m/s, dt = 0.2 sqrt(m / kn). At gain 100 m/(s N), gain c = 2.6 and
+ * gain kn dt = 0.72: a servo reading the whole load fed the piston's own speed back through
+ * c (v_(n+1) ~ -gain c v_n) and chattered at +-v_max for good, the piston load stuck at
+ * 0.08 or 0.11 N (from gain ~30 on; 2026-12-03, docs/scene.md); reading the rate-independent
+ * load it settles on the target. While the piston moves, the total load differs from the
+ * rate-independent one by the dashpot force; at rest they agree. */
+START_TEST(test_servo_dashpot) {
+  dem_err err = {0};
+  dem_sim *s = dem_sim_create(&err);
+  int mat;
+  ck_assert_int_eq(dem_sim_add_material(s, 2500.0, &mat, &err), DEM_OK);
+  dem_params ps;
+  dem_params_init(&ps);
+  dem_params_set(&ps, "kn", 1e3, "test", &err);
+  dem_params_set(&ps, "e", 0.3, "test", &err);
+  dem_contact ct;
+  ck_assert_int_eq(dem_contact_setup(&ct, dem_contact_law_find("linear"), &ps, &err), DEM_OK);
+  ck_assert_int_eq(dem_sim_set_interaction(s, mat, mat, &ct, NULL, NULL, &err), DEM_OK);
+  const double r = 5e-4, m = 2500.0 * 4.0 / 3.0 * M_PI * r * r * r, F = 0.1, gain = 100.0;
+  ck_assert_int_eq(dem_sim_add_particle(s, (double[3]){0, 0, r}, NULL, r, mat, &err), DEM_OK);
+  dem_wall_spec base = {DEM_WALL_PLANE, {0, 0, 0}, {0, 0, 1}, 0, {0, 0, 0}, mat};
+  ck_assert_int_eq(dem_sim_add_wall(s, &base, NULL, &err), DEM_OK);
+  int piston;
+  dem_wall_spec pw = {DEM_WALL_PLANE, {0, 0, 2 * r + 1e-6}, {0, 0, -1}, 0, {0, 0, 0}, mat};
+  ck_assert_int_eq(dem_sim_add_wall(s, &pw, &piston, &err), DEM_OK);
+  dem_sim_set_gravity(s, (double[3]){0, 0, -9.81});
+  ck_assert_int_eq(dem_sim_set_dt(s, 0.2 * sqrt(m / 1e3), &err), DEM_OK);
+  ck_assert_int_eq(dem_sim_set_wall_servo(s, piston, F, gain, 0.5, &err), DEM_OK);
+  double dmax = 0.0; /* N, largest |total - rate-independent| while the piston moves */
+  for (int k = 0; k < 200; k++) {
+    ck_assert_int_eq(dem_sim_run(s, 1, &err), DEM_OK);
+    double f[3], fr[3];
+    dem_sim_wall_load(s, piston, f, NULL, NULL);
+    ck_assert_int_eq(dem_sim_wall_load_rate_independent(s, piston, fr), DEM_OK);
+    dmax = fmax(dmax, fabs(f[2] - fr[2]));
+  }
+  ck_assert_msg(dmax > 1e-3 * F, "the dashpots load the moving piston (%g N)", dmax);
+  ck_assert_int_eq(dem_sim_run(s, 3800, &err), DEM_OK);
+  double f[3], fr[3];
+  dem_wall_spec w;
+  dem_sim_wall_load(s, piston, f, NULL, NULL);
+  dem_sim_wall_load_rate_independent(s, piston, fr);
+  dem_sim_wall(s, piston, &w);
+  if (getenv("DEM_TEST_VERBOSE"))
+    fprintf(stderr, "servo dashpot: load %.9g N (rate-independent %.9g), v %g m/s, max |dashpot| "
+            "%g N\n", f[2], fr[2], w.v[2], dmax);
+  ck_assert_double_eq_tol(fr[2], F, 1e-9 * F);
+  ck_assert_double_eq_tol(f[2], F, 1e-9 * F);
+  ck_assert(fabs(w.v[2]) < 1e-9);
+  ck_assert_int_eq(dem_sim_wall_load_rate_independent(s, 2, fr), DEM_ERANGE);
   dem_sim_free(s);
 }
 END_TEST
@@ -976,6 +1042,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_threads_reproducible);
   tcase_add_test(tc, test_breakdown);
   tcase_add_test(tc, test_servo);
+  tcase_add_test(tc, test_servo_dashpot);
   tcase_add_test(tc, test_errors);
   tcase_add_test(tc, test_oblique_friction);
   tcase_add_loop_test(tc, test_every_law_head_on, 0, dem_contact_law_count());

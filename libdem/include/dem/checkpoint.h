@@ -24,8 +24,9 @@
 #include "dem/error.h"
 
 /* 2: wall records hold dem_wall_spec.length and .angle (finite indenters); the clock base
- * (time = t_base + (steps - steps_base) dt, exact across split runs). */
-#define DEM_CHECKPOINT_VERSION 2
+ * (time = t_base + (steps - steps_base) dt, exact across split runs).
+ * 3: wall records hold the normal dashpots' part of the wall load (a servo's input). */
+#define DEM_CHECKPOINT_VERSION 3
 
 /* Write the state of s and the caller's blob user[0 .. user_len) (may be NULL / 0) to path
  * (via path.tmpPID and rename). s is not modified. */

@@ -160,8 +160,11 @@ int dem_sim_add_wall(dem_sim *s, const dem_wall_spec *w, int *index, dem_err *er
 int dem_sim_set_wall_velocity(dem_sim *s, int wall, const double v[3], dem_err *err);
 /* Servo: from the next step on, the wall moves along its normal n (towards the particles
  * for a positive speed) at v = clamp(gain (f_target - f_c), -v_max, v_max), where
- * f_c = -(load on the wall) . n is the compressive force the particles exert on it (N),
- * updated after every force evaluation. f_target in N (a stress times the wall's area),
+ * f_c = -(rate-independent load on the wall) . n is the compressive force the particles
+ * exert on it (N) without the normal dashpots (dem_sim_wall_load_rate_independent), updated
+ * after every force evaluation. (The dashpots see the wall's own speed: read with them, the
+ * servo fed v_n back into v_(n+1) and oscillated once gain x (sum of their coefficients)
+ * exceeded 1.) f_target in N (a stress times the wall's area),
  * gain in m/(s N), v_max in m/s. dem_sim_set_wall_velocity switches the servo off. */
 int dem_sim_set_wall_servo(dem_sim *s, int wall, double f_target, double gain, double v_max,
                            dem_err *err);
@@ -178,6 +181,10 @@ int dem_sim_wall(const dem_sim *s, int wall, dem_wall_spec *out);
 /* Force (N) and torque about the wall point p (N m) that the particles exert on the wall in
  * the last force evaluation, and the work (J) the wall has done on the particles so far. */
 int dem_sim_wall_load(const dem_sim *s, int wall, double f[3], double t[3], double *work);
+/* The rate-independent part of that force (N): f less the normal dashpots' part
+ * (dem_normal.f_damp of each contact), i.e. springs, plasticity, adhesion and friction. A
+ * servo reads this (dem_sim_set_wall_servo). */
+int dem_sim_wall_load_rate_independent(const dem_sim *s, int wall, double f[3]);
 
 /* Advance nsteps steps of velocity Verlet. Returns DEM_OK, or DEM_ENONFINITE (NaN/inf),
  * DEM_ERUNAWAY (overlap beyond the stated fraction), DEM_EUNSTABLE (kinetic energy growth

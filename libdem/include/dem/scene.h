@@ -60,7 +60,7 @@ typedef struct dem_scene_config {
                              point stays within F (1 +- servo_band) (0.1) */
   double servo_steps;     /* servo time constant for the stiffest possible bed, in steps of
                              the reference step 0.2 sqrt(m_min / k_max) at every dt_factor
-                             (20; see docs/scene.md) */
+                             (4; see docs/scene.md) */
   double hold_time;       /* s, hold at sigma_pre with the servo before unloading */
   double hold_tol;        /* -, the stress must be within this of sigma_pre (0.02) */
   /* indentation */

@@ -1,6 +1,7 @@
 /* HDF5 checkpoints of the engine (dem/checkpoint.h).
  *
- * Layout (version 2; version 1 had no wall length and angle and no clock base), all
+ * Layout (version 3; version 2 had no dashpot part of the wall loads, version 1 no wall
+ * length and angle and no clock base), all
  * datasets in the root group; counts that may be zero are stored with at least one element
  * (the true counts are in "meta_i"):
  *   format        uint8[16]   "dem-checkpoint" (zero padded)
@@ -53,7 +54,7 @@ enum {
 enum {
   WD_KIND, WD_P = 1, WD_N = 4, WD_RADIUS = 7, WD_V = 8, WD_MATERIAL = 11, WD_F = 12, WD_T = 15,
   WD_WORK = 18, WD_PBUILD = 19, WD_SERVO = 22, WD_FTARGET, WD_GAIN, WD_VMAX, WD_LENGTH,
-  WD_ANGLE, WD
+  WD_ANGLE, WD_FD, WD = WD_FD + 3
 };
 
 /* ---- checksum ---- */
@@ -253,6 +254,7 @@ int dem_sim_checkpoint_write(const dem_sim *s, const char *path, const void *use
       d[WD_N + c] = wl->spec.n[c];
       d[WD_V + c] = wl->spec.v[c];
       d[WD_F + c] = wl->f[c];
+      d[WD_FD + c] = wl->fd[c];
       d[WD_T + c] = wl->t[c];
       d[WD_PBUILD + c] = wl->p_build[c];
     }
@@ -386,9 +388,10 @@ static int restore(rctx *r, dem_sim **out, void **user, size_t *user_len) {
                                "only%s",
                                path, (int)version, DEM_CHECKPOINT_VERSION,
                                version < DEM_CHECKPOINT_VERSION
-                                   ? " (written by an older build: version 2 added the "
-                                     "indenter length and angle to the walls and the "
-                                     "clock base; rerun to write a new checkpoint)"
+                                   ? " (written by an older build: version 3 added the "
+                                     "dashpot part of the wall loads, version 2 the "
+                                     "indenter length and angle and the clock base; rerun "
+                                     "to write a new checkpoint)"
                                    : " (written by a newer build)");
   int64_t mi[NI];
   double md[ND];
@@ -527,6 +530,7 @@ static int restore(rctx *r, dem_sim **out, void **user, size_t *user_len) {
     for (int c = 0; c < 3; c++) {
       wl->spec.n[c] = d[WD_N + c]; /* bit-exact, not re-normalised */
       wl->f[c] = d[WD_F + c];
+      wl->fd[c] = d[WD_FD + c];
       wl->t[c] = d[WD_T + c];
       wl->p_build[c] = d[WD_PBUILD + c];
     }

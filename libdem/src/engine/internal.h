@@ -36,6 +36,8 @@ enum { DEM_IF_INIT = 1u, DEM_IF_TANG = 2u, DEM_IF_ROLL = 4u, DEM_IF_HERTZ = 8u,
 typedef struct dem_wall {
   dem_wall_spec spec;       /* current geometry (p advances with v) */
   double f[3], t[3];        /* N, N m: load on the wall of the last force evaluation */
+  double fd[3];             /* N, the part of f from the normal dashpots (dem_normal.f_damp):
+                               the servo reads f - fd, the rate-independent load */
   double work;              /* J, work done by the wall on the particles */
   double *hist;             /* [cap * nh] history of each particle against this wall */
   uint32_t *list;           /* particles within reach at the last build, ascending */
@@ -75,6 +77,7 @@ typedef struct dem_tdata {
   uint32_t *cand;                /* scratch: a row's candidate contacts / stale springs */
   size_t cap_cand;
   double wf[DEM_ENGINE_MAX_WALLS][3], wt[DEM_ENGINE_MAX_WALLS][3];
+  double wfd[DEM_ENGINE_MAX_WALLS][3]; /* N, the normal dashpots' part of wf */
   double wpow[DEM_ENGINE_MAX_WALLS]; /* W, power of the wall on the particles */
   size_t contacts, wall_contacts;
   double max_overlap;            /* largest alpha / min(r) */

@@ -165,9 +165,11 @@ static void collect(dem_sim *s, int add_work) {
     double pw = 0.0;
     memset(wl->f, 0, sizeof wl->f);
     memset(wl->t, 0, sizeof wl->t);
+    memset(wl->fd, 0, sizeof wl->fd);
     for (int t = 0; t < nt; t++) {
       for (int k = 0; k < 3; k++) {
         wl->f[k] += s->td[t].wf[w][k];
+        wl->fd[k] += s->td[t].wfd[w][k];
         wl->t[k] += s->td[t].wt[w][k];
       }
       pw += s->td[t].wpow[w];

@@ -99,11 +99,22 @@ void dem_engine_servo(dem_sim *s) {
     dem_wall *wl = &s->wall[w];
     if (!wl->servo) continue;
     const double *n = wl->spec.n;
-    const double fc = -(wl->f[0] * n[0] + wl->f[1] * n[1] + wl->f[2] * n[2]);
+    /* The servo reads the rate-independent load f - fd, not f: the dashpots of the wall's
+     * contacts see the wall's own velocity, so a servo reading f fed v_n back into
+     * v_(n+1) through their sum c_tot and alternated, growing, once gain c_tot > 1
+     * (docs/scene.md, "What limits the servo's gain"). */
+    const double f[3] = {wl->f[0] - wl->fd[0], wl->f[1] - wl->fd[1], wl->f[2] - wl->fd[2]};
+    const double fc = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
     double sp = wl->gain * (wl->f_target - fc);
     sp = sp > wl->v_max ? wl->v_max : (sp < -wl->v_max ? -wl->v_max : sp);
     for (int k = 0; k < 3; k++) wl->spec.v[k] = sp * n[k];
   }
+}
+
+int dem_sim_wall_load_rate_independent(const dem_sim *s, int wall, double f[3]) {
+  if (wall < 0 || wall >= s->nwall) return DEM_ERANGE;
+  for (int k = 0; k < 3; k++) f[k] = s->wall[wall].f[k] - s->wall[wall].fd[k];
+  return DEM_OK;
 }
 
 int dem_sim_wall(const dem_sim *s, int wall, dem_wall_spec *out) {
@@ -239,7 +250,7 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
   for (int wi = 0; wi < s->nwall; wi++) {
     const dem_wall *wl = &s->wall[wi];
     const dem_wall_spec *ws = &wl->spec;
-    double wf[3] = {0, 0, 0}, wt[3] = {0, 0, 0}, pow_ = 0.0;
+    double wf[3] = {0, 0, 0}, wt[3] = {0, 0, 0}, wfd[3] = {0, 0, 0}, pow_ = 0.0;
     const size_t k0 = lower_bound(wl->list, wl->nlist, i0);
     const size_t k1 = lower_bound(wl->list, wl->nlist, i1);
     for (size_t kk = k0; kk < k1; kk++) {
@@ -296,6 +307,7 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
         p->f[3 * i + k] += F[k];
         p->torque[3 * i + k] += T[k];
         wf[k] -= F[k];
+        wfd[k] -= out.f_damp * n[k];
       }
       /* torque on the wall about its point p: (x_c - p) x (-F) */
       const double arm[3] = {x[0] - (ri - alpha) * n[0] - ws->p[0],
@@ -309,6 +321,7 @@ void dem_engine_wall_forces(dem_sim *s, dem_tdata *td, size_t i0, size_t i1) {
     }
     for (int k = 0; k < 3; k++) {
       td->wf[wi][k] = wf[k];
+      td->wfd[wi][k] = wfd[k];
       td->wt[wi][k] = wt[k];
     }
     td->wpow[wi] = pow_;

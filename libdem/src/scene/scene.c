@@ -84,7 +84,7 @@ void dem_scene_config_defaults(dem_scene_config *c, dem_scene_materials m) {
   c->sigma_pre = 1e4;
   c->strain_rate = 1.0;
   c->servo_band = 0.1;
-  c->servo_steps = 20.0;
+  c->servo_steps = 4.0;
   c->hold_time = 2e-3;
   c->hold_tol = 0.02;
   c->shape = DEM_INDENTER_SPHERE;
@@ -227,8 +227,11 @@ int scene_interactions(dem_scene *sc, dem_err *err) {
  * response is a physical time and the consolidation one protocol at every time step (with
  * the run's own dt, a larger step made a slower servo and a longer hold: docs/scene.md).
  * Stable for the explicit step: the loop gain per step, gain K dt, is at most
- * dt / (servo_steps dt_servo) = dt_factor / (SERVO_DT_FACTOR servo_steps), 0.25 at
- * dt_factor 1 with servo_steps 20. */
+ * dt / (servo_steps dt_servo) = dt_factor / (SERVO_DT_FACTOR servo_steps), 0.25 at the
+ * thesis' 0.2 and 1.25 (< 2) at dt_factor 1 with servo_steps 4. (servo_steps was 20 until
+ * the servo read the rate-independent load, 2026-12-03: read with the dashpots of the
+ * piston contacts, the piston's own speed came back through them and gain c_tot > 1
+ * oscillated, which capped the gain at ~4x that of 20 steps; docs/scene.md.) */
 #define SERVO_DT_FACTOR 0.2
 double scene_servo_gain(const dem_scene *sc) {
   const dem_scene_config *c = &sc->cfg;
@@ -338,9 +341,13 @@ static double highest_top(dem_scene *sc, double rad) {
   return z;
 }
 
+/* Pa, the bed's stress on the piston: the rate-independent load, without the dashpots of
+ * the piston contacts, which the servo must not read (dem_sim_set_wall_servo) and the hold
+ * criterion and the set-point integral then must not read either, or they would chase
+ * each other by c_tot v. */
 static double piston_stress(dem_scene *sc) {
   double f[3];
-  dem_sim_wall_load(sc->sim, sc->w_piston, f, NULL, NULL);
+  dem_sim_wall_load_rate_independent(sc->sim, sc->w_piston, f);
   return f[2] / (M_PI * sc->die_radius * sc->die_radius); /* particles push the piston up */
 }
 
@@ -592,8 +599,9 @@ int dem_scene_consolidate(dem_scene *sc, dem_err *err) {
     /* Phase 2: hold sigma_pre with the engine's proportional servo, v = gain (f_set - f_c)
      * capped at the loading speed, gain from scene_servo_gain: stable for the explicit step
      * whatever the bed. (A gain from the measured loading stiffness, 10x for the unloading
-     * branch at 200 dt, made the piston and the bed oscillate between 1 and 15 kPa: the
-     * bed's own dynamics, not the step, then limit the gain.) Hold within hold_tol for
+     * branch at 200 dt, made the piston and the bed oscillate between 1 and 15 kPa, then
+     * blamed on the bed's dynamics; the servo read the piston contacts' dashpots then, which
+     * is what oscillates at gain c_tot > 1: docs/scene.md.) Hold within hold_tol for
      * hold_time. The set point f_set is corrected by an integral term (below) whose rate
      * follows from the bed's loading stiffness measured over the second half of phase 1. */
     sc->gain = scene_servo_gain(sc);
