@@ -28,16 +28,17 @@
  * from what this one made.
  *
  * Cost estimates (s, for the order and the --plan table only; measured on the 2-core AMD EPYC
- * VM of docs/validation.md with 2 threads on 2026-12-03, with the consolidation without
- * overshoot, x1.9 for one thread: the 20 d bed in the 45 d die at x0.01 1936 s (settle 400 s,
- * consolidate 952 s, unload and relax 584 s), the 16 d sphere to h/r 0.5 at gamma* 0.1
- * 285 s): a bed costs ~ die^2 bed sqrt(k) (particles x steps of fill, settle and
+ * VM of docs/validation.md with 2 threads on 2026-12-03 14:05, with the servo reading the
+ * rate-independent piston load (gain x5), x1.9 for one thread: the 20 d bed in the 45 d die
+ * at x0.01 1050 s (settle 379 s, consolidate 221 s, unload and relax 450 s), the 16 d sphere
+ * to h/r 0.5 at gamma* 0.1 246 s): a bed costs ~ die^2 bed sqrt(k) (particles x steps of fill, settle and
  * consolidation, dt ~ 1/sqrt(k); the slower piston of a bed deeper than the reference is not
  * counted: the 50 d bed at gamma* 0.04 took 2.5x its estimate with the constants of before,
  * as settling dominates); a run costs particles x steps ~
  * die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r sqrt(k) / (gamma* dt_scale). Both x
- * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2). Until 2026-12-03 the
- * constants were 454 and 195 s (a 2-core Xeon VM, 2026-12-01): they predated the bed's relax
+ * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2). Before the servo's
+ * remedy (2026-12-03 morning) they were 1936 and 285 s (consolidate 952 s); until then
+ * 454 and 195 s (a 2-core Xeon VM, 2026-12-01): they predated the bed's relax
  * phase and the longer hold of the consolidation without overshoot, and underestimated the
  * full tier ~2.5-4x (docs/validation.md).
  */
@@ -55,12 +56,12 @@
 #include "vh.h"
 
 static double bed_cost(const vh *h, const vh_bed *b) {
-  return 1936.0 * (b->die * b->die * b->bed) / (45.0 * 45.0 * 20.0) * sqrt(b->kscale / 0.01) *
+  return 1050.0 * (b->die * b->die * b->bed) / (45.0 * 45.0 * 20.0) * sqrt(b->kscale / 0.01) *
          (0.2 / h->tier->dt_factor);
 }
 
 static double run_cost(const vh *h, const vh_bed *b, const vh_indent *in) {
-  return 285.0 * (b->die * b->die) / (45.0 * 45.0) * (in->D / 16.0) * (h->tier->h_end / 0.5) *
+  return 246.0 * (b->die * b->die) / (45.0 * 45.0) * (in->D / 16.0) * (h->tier->h_end / 0.5) *
          (0.1 / in->gamma_star) * sqrt(b->kscale / 0.01) * (0.2 / h->tier->dt_factor) / in->dt_scale;
 }
 
