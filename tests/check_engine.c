@@ -946,7 +946,8 @@ START_TEST(test_servo) {
   /* 60 ms: approach, compaction, and the column's slips: under the held load it rearranges
    * now and then (the load falls 2-4 % for ~3-6 ms and the servo brings it back: at 37-42
    * ms since the servo reads the rate-independent load, at 48-54 ms before; both runs hold
-   * the target to 1e-4 from 57 ms on, /work/diag/servocol.c of 2026-12-03); the window
+   * the target to 1e-4 from 57 ms on: a copy of this test run to 90 ms against both engines,
+   * 2026-12-03); the window
    * (until 2026-12-03 after 36 ms) must not depend on when a slip comes. */
   ck_assert_int_eq(dem_sim_run(s, 40000, &err), DEM_OK);
   double sum = 0.0, worst = 0.0, sumr = 0.0;

@@ -103,7 +103,8 @@ void dem_engine_servo(dem_sim *s) {
      * contacts see the wall's own velocity, so a servo reading f fed v_n back into
      * v_(n+1) through their sum c_tot and alternated, growing, once gain c_tot > 1
      * (docs/scene.md, "What limits the servo's gain"). */
-    const double f[3] = {wl->f[0] - wl->fd[0], wl->f[1] - wl->fd[1], wl->f[2] - wl->fd[2]};
+    double f[3];
+    dem_sim_wall_load_rate_independent(s, w, f);
     const double fc = -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]);
     double sp = wl->gain * (wl->f_target - fc);
     sp = sp > wl->v_max ? wl->v_max : (sp < -wl->v_max ? -wl->v_max : sp);
