@@ -3,7 +3,7 @@
  *   dem-validate [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]
  *                [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]
  *                [--plan] [--no-run-cache] [--budget S] [--materials SET]
- *                [--dt-factor F] [--stiffness-scale K]
+ *                [--dt-factor F] [--stiffness-scale K] [--replicates N]
  *   mpirun -n R dem-validate ...   beds and runs distributed over R ranks (validate/dist.c)
  *
  * Writes DIR/report.md, DIR/report.html, DIR/summary.json, PNG figures and DIR/data/; prints
@@ -34,7 +34,7 @@ static void usage(FILE *f) {
           "usage: %s [--tier quick|medium|full|smoke] [--case NAME[,NAME...]] [--out DIR] [--beds DIR]\n"
           "          [--threads N] [--level A] [--json] [--list] [--quiet] [--baseline FILE]\n"
           "          [--plan] [--no-run-cache] [--budget S] [--materials SET]\n"
-          "          [--dt-factor F] [--stiffness-scale K]\n"
+          "          [--dt-factor F] [--stiffness-scale K] [--replicates N]\n"
           "       mpirun -n R %s ...   (independent beds and runs on R ranks)\n"
           "  --tier     quick (default: geometry scaled ~0.6, cases 1-3, minutes), medium (the\n"
           "             same geometry, all eleven cases, ~30 min), full (thesis scale, all\n"
@@ -61,7 +61,12 @@ static void usage(FILE *f) {
           "  --materials pasha-simplified (default: chapters 6/7, Tables 6.1-6.3, every case)\n"
           "             or hertz-jkr (chapter 5's cohesive glass beads, Tables 5.1-5.3: the\n"
           "             materials of the thesis' runs behind cases 1-4, which are the only\n"
-          "             cases it runs)\n",
+          "             cases it runs)\n"
+          "  --replicates N  replicate beds (seeds 1..N, N <= 4) on which the cases whose\n"
+          "             criteria swing from bed to bed (plateau, penetration-depth,\n"
+          "             indenter-shape) make their runs and are judged paired over the beds;\n"
+          "             and from which cases 2, 8, 9 estimate the bed-to-bed spread (default:\n"
+          "             the tier's: 1 quick and smoke, 2 medium and full)\n",
           prog, prog);
 }
 
@@ -215,12 +220,13 @@ int main(int argc, char **argv) {
                                  {"materials", required_argument, 0, 'M'},
                                  {"dt-factor", required_argument, 0, 'D'},
                                  {"stiffness-scale", required_argument, 0, 'K'},
+                                 {"replicates", required_argument, 0, 'R'},
                                  {"help", no_argument, 0, 'h'},
                                  {"version", no_argument, 0, 'V'},
                                  {0, 0, 0, 0}};
   const char *tier = "quick", *cases = NULL, *out = NULL, *beds = NULL, *baseline = NULL;
   dem_scene_materials materials = DEM_SCENE_PASHA;
-  double threads = 2, level = 0.05, budget = 0, dt_factor = 0, kscale = 0;
+  double threads = 2, level = 0.05, budget = 0, dt_factor = 0, kscale = 0, replicates = 0;
   int json = 0, list = 0, verbose = 0, plan_only = 0, no_cache = 0, o;
   dem_err err = {0};
   opterr = 0;
@@ -263,6 +269,14 @@ int main(int argc, char **argv) {
     case 'K':
       if (cli_parse_double("--stiffness-scale", optarg, 1e-3, 1, &kscale, &err))
         goto usage_error;
+      break;
+    case 'R':
+      if (cli_parse_double("--replicates", optarg, 1, 4, &replicates, &err)) goto usage_error;
+      if (replicates != floor(replicates)) {
+        dem_err_set(&err, DEM_ERANGE, "--replicates: %s is not a whole number (allowed: 1-4)",
+                    optarg);
+        goto usage_error;
+      }
       break;
     case 'h': usage(stdout); return CLI_EXIT_OK;
     case 'V': cli_print_version(prog); return CLI_EXIT_OK;
@@ -315,7 +329,7 @@ int main(int argc, char **argv) {
     return CLI_EXIT_RUN;
   }
   h->tier = t;
-  if (dt_factor > 0 || kscale > 0) {
+  if (dt_factor > 0 || kscale > 0 || replicates > 0) {
     /* the tier's table entry with the numerics the user chose; beds and runs carry dt and
        the stiffness scale in their names (run.c), so they never mix with the tier's own */
     h->tier_own = *t;
@@ -327,8 +341,13 @@ int main(int argc, char **argv) {
     }
     if (kscale > 0) {
       h->tier_own.stiffness_scale = h->tier_own.rate_stiffness_scale = kscale;
-      snprintf(h->overrides + n, sizeof h->overrides - (size_t)n, "%s--stiffness-scale %g",
-               n ? " " : "", kscale);
+      n += snprintf(h->overrides + n, sizeof h->overrides - (size_t)n, "%s--stiffness-scale %g",
+                    n ? " " : "", kscale);
+    }
+    if (replicates > 0) {
+      h->tier_own.replicates = (int)replicates;
+      snprintf(h->overrides + n, sizeof h->overrides - (size_t)n, "%s--replicates %d",
+               n ? " " : "", (int)replicates);
     }
     h->tier = &h->tier_own;
   }

@@ -352,7 +352,9 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
              "unless varied, except that a bed deeper than the reference is consolidated and "
              "indented at the reference bed's speed in m/s (gamma* x reference / bed; the "
              "bed table lists it), dt = %g sqrt(m_min / k_max). Plateau window h/r %.2f-%.2f; "
-             "early window %.2f-%.2f; significance level %.2f.",
+             "early window %.2f-%.2f; significance level %.2f; %d replicate bed(s) (seeds "
+             "1-%d: the runs of cases 1, 4 and 6 are made on each and judged over them, cases "
+             "2, 8 and 9 take the bed-to-bed spread from them).",
          h->materials == DEM_SCENE_HERTZ_JKR
              ? "chapter 5 materials (hertz-jkr: cohesive glass beads, Hertz + modified JKR "
                "between particles, thesis Tables 5.1-5.3; the indenter is Material 1 with "
@@ -360,7 +362,8 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
              : "chapter 6/7 materials (pasha-simplified, thesis Tables 6.1-6.3)",
          t->stiffness_scale, t->rate_stiffness_scale, t->die, t->bed, t->indenter,
          t->gamma_star, t->dt_factor,
-         t->plateau_lo, t->plateau_hi, t->early_lo, t->early_hi, h->level);
+         t->plateau_lo, t->plateau_hi, t->early_lo, t->early_hi, h->level, t->replicates,
+         t->replicates);
 
   d_head(&d, 2, "Summary");
   d_table_begin(&d);
@@ -498,14 +501,15 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
   json_object_set_new(root, "overrides",
                       h->overrides[0] ? json_string(h->overrides) : json_null());
   json_object_set_new(root, "settings",
-                      json_pack("{s:s,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f]}", "materials",
+                      json_pack("{s:s,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:f,s:[f,f],s:i}", "materials",
                                 dem_scene_materials_names[h->materials],
                                 "die_d", t->die, "shallow_die_d",
                                 t->shallow_die > 0 ? t->shallow_die : t->die, "bed_d", t->bed,
                                 "indenter_d", t->indenter, "gamma_star", t->gamma_star,
                                 "stiffness_scale", t->stiffness_scale, "rate_stiffness_scale",
                                 t->rate_stiffness_scale, "dt_factor", t->dt_factor,
-                                "plateau_h_over_r", t->plateau_lo, t->plateau_hi));
+                                "plateau_h_over_r", t->plateau_lo, t->plateau_hi,
+                                "replicates", t->replicates));
   for (int i = 0; i < h->nbeds; i++) {
     const vh_bed *b = &h->beds[i];
     json_array_append_new(

@@ -395,6 +395,10 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
     size_t len = strlen(r->label);
     snprintf(r->label + len, sizeof r->label - len, ", k x%g", b->kscale);
   }
+  if (b->seed != 1) { /* a replicate bed */
+    size_t len = strlen(r->label);
+    snprintf(r->label + len, sizeof r->label - len, ", seed %lu", b->seed);
+  }
   if (h->plan) /* listed, not run: a placeholder the cases see as not (yet) available */
     return run_placeholder(h, r, "planned");
   char cpath[700] = "";

@@ -161,6 +161,7 @@ typedef struct dem_comparison {
   double z;      /* diff / se */
   double p;      /* p-value of z under the alternative (normal approximation) */
   double level;  /* the significance level used */
+  double nu;     /* degrees of freedom of the test (INFINITY: the z-test; else z is a t) */
   double z_crit; /* |z| (two-sided) or signed z beyond which the difference counts */
   int different; /* 1: different beyond the fluctuation at `level`, else 0 ("agree") */
 } dem_comparison;
@@ -182,6 +183,19 @@ int dem_compare_means_t(double mean1, double se1, double nu1, double mean2, doub
 /* Replicates (beds with different seeds): the mean of k >= 2 replicate plateau means and its
  * standard error from their spread, sd / sqrt(k) (degrees of freedom k - 1). */
 int dem_replicates_mean(size_t k, const double *means, double *mean, double *se, dem_err *err);
+
+/* Paired comparison over k >= 1 replicate beds: on bed i the two runs a_i, b_i (means with
+ * standard errors se_a[i], se_b[i] > 0) share the bed, so the test is on the differences
+ * d_i = a_i - b_i, whose mean dbar carries
+ *   s_w^2 = sum (se_a[i]^2 + se_b[i]^2) / k^2   (the runs' own fluctuation) and, for k >= 2,
+ *   s_b^2 = var(d_i) / k                         (the spread of d between beds, k - 1 dof).
+ * se = sqrt(max(s_w^2, s_b^2)): a difference that swings from bed to bed more than the runs'
+ * errors explain is judged by its spread, with Student's t of k - 1 degrees of freedom (the
+ * paired t-test); otherwise z. k = 1 is dem_compare_means(a_0, se_a[0], b_0, se_b[0]).
+ * out->diff = dbar, out->se = se. DEM_ERANGE (k = 0, se <= 0, level), DEM_ENONFINITE. */
+int dem_compare_paired(size_t k, const double *a, const double *se_a, const double *b,
+                       const double *se_b, double level, dem_alternative alt,
+                       dem_comparison *out, dem_err *err);
 
 /* ---- measurement volumes --------------------------------------------------------------- */
 
