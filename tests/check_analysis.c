@@ -493,18 +493,21 @@ END_TEST
 START_TEST(test_compare_paired) {
   dem_comparison c, c1;
   dem_err err = {0};
+  double q;
   /* k = 1 is the two-sample z-test. */
   double a1 = 6.2e3, sa1 = 100.0, b1 = 6.0e3, sb1 = 50.0;
-  ck_assert_int_eq(dem_compare_paired(1, &a1, &sa1, &b1, &sb1, 0.05, DEM_TEST_GREATER, &c,
+  ck_assert_int_eq(dem_compare_paired(1, &a1, &sa1, &b1, &sb1, 0.05, DEM_TEST_GREATER, &c, &q,
                                       &err), DEM_OK);
   ck_assert_int_eq(dem_compare_means(a1, sa1, b1, sb1, 0.05, DEM_TEST_GREATER, &c1, &err),
                    DEM_OK);
-  ck_assert(c.z == c1.z && c.z_crit == c1.z_crit && c.different == c1.different);
-  /* Consistent differences 1.0, 1.2, 0.8 with tiny run errors: the spread decides,
-   * se = sqrt(var(d) / k) = sqrt(0.04 / 3), t = 1 / se with 2 dof, t_{0.95, 2} = 2.919986. */
+  ck_assert(c.z == c1.z && c.z_crit == c1.z_crit && c.different == c1.different && q == 0.0);
+  /* Differences 1.0, 1.2, 0.8 with tiny run errors (s_i^2 = 2e-4): Cochran's Q = 0.08 / 2e-4
+   * = 400 > chi^2_{2, 0.95} = 5.99, so the spread decides: se = sqrt(var(d) / k) =
+   * sqrt(0.04 / 3), t = 1 / se with 2 dof against t_{0.95, 2} = 2.919986. */
   double a[3] = {3.0, 3.2, 2.8}, b[3] = {2.0, 2.0, 2.0}, se[3] = {0.01, 0.01, 0.01};
-  ck_assert_int_eq(dem_compare_paired(3, a, se, b, se, 0.05, DEM_TEST_GREATER, &c, &err),
+  ck_assert_int_eq(dem_compare_paired(3, a, se, b, se, 0.05, DEM_TEST_GREATER, &c, &q, &err),
                    DEM_OK);
+  RELTOL(q, 400.0, 1e-9);
   RELTOL(c.diff, 1.0, 1e-12);
   RELTOL(c.se, sqrt(0.04 / 3.0), 1e-12);
   RELTOL(c.z, 1.0 / sqrt(0.04 / 3.0), 1e-12);
@@ -512,33 +515,50 @@ START_TEST(test_compare_paired) {
   RELTOL(c.nu, 2.0, 1e-12);
   ck_assert_int_eq(c.different, 1);
   /* A difference whose sign swings between two beds (+0.5, -0.3), each run "significant" on
-   * its own: dbar 0.1, se = sqrt(0.32 / 2) = 0.4, t = 0.25 against t_{0.95, 1} = 6.313752. */
+   * its own: Q = 0.32 / 0.005 = 64; dbar 0.1, se = sqrt(0.32 / 2) = 0.4, t = 0.25 against
+   * t_{0.95, 1} = 6.313752. */
   double a2[2] = {1.5, 0.7}, b2[2] = {1.0, 1.0}, s2[2] = {0.05, 0.05};
-  ck_assert_int_eq(dem_compare_paired(2, a2, s2, b2, s2, 0.05, DEM_TEST_GREATER, &c, &err),
+  ck_assert_int_eq(dem_compare_paired(2, a2, s2, b2, s2, 0.05, DEM_TEST_GREATER, &c, &q, &err),
                    DEM_OK);
+  RELTOL(q, 64.0, 1e-9);
   RELTOL(c.diff, 0.1, 1e-12);
   RELTOL(c.se, 0.4, 1e-12);
   RELTOL(c.z_crit, 6.313751515, 1e-8);
   ck_assert_int_eq(c.different, 0);
-  /* Spread within the runs' errors (d 1.0, 1.1; se 0.3 each): s_w = sqrt(4 x 0.09) / 2 = 0.3
-   * exceeds s_b = sqrt(0.005 / 2), so z = 1.05 / 0.3 = 3.5 against 1.645. */
+  /* Spread within the runs' errors (d 1.0, 1.1; se 0.3 each, s_i^2 = 0.18): Q = 0.005 / 0.18;
+   * se = sqrt(2 x 0.18) / 2 = 0.3, z = 1.05 / 0.3 = 3.5 against 1.645. */
   double a3[2] = {2.0, 2.1}, b3[2] = {1.0, 1.0}, s3[2] = {0.3, 0.3};
-  ck_assert_int_eq(dem_compare_paired(2, a3, s3, b3, s3, 0.05, DEM_TEST_GREATER, &c, &err),
+  ck_assert_int_eq(dem_compare_paired(2, a3, s3, b3, s3, 0.05, DEM_TEST_GREATER, &c, &q, &err),
                    DEM_OK);
+  RELTOL(q, 0.005 / 0.18, 1e-9);
   RELTOL(c.se, 0.3, 1e-12);
   RELTOL(c.z, 3.5, 1e-12);
   ck_assert(isinf(c.nu));
   RELTOL(c.z_crit, 1.6448536269514722, 1e-9);
   ck_assert_int_eq(c.different, 1);
+  /* The spread of d (1.0, 2.0: sd(d) / sqrt(2) = 0.5) a little above the runs' errors (se
+   * 0.45 each: sqrt(2 x 0.405) / 2 = 0.45) is what chance gives (Q = 0.5 / 0.405 = 1.23 <
+   * chi^2_{1, 0.95} = 3.84): still the z-test, z = 1.5 / 0.45. */
+  double a4[2] = {2.0, 3.0}, b4[2] = {1.0, 1.0}, s4[2] = {0.45, 0.45};
+  ck_assert_int_eq(dem_compare_paired(2, a4, s4, b4, s4, 0.05, DEM_TEST_GREATER, &c, &q, &err),
+                   DEM_OK);
+  RELTOL(q, 0.5 / 0.405, 1e-9);
+  RELTOL(c.se, 0.45, 1e-12);
+  RELTOL(c.z, 1.5 / 0.45, 1e-12);
+  ck_assert(isinf(c.nu));
+  ck_assert_int_eq(c.different, 1);
   /* Errors. */
-  ck_assert_int_eq(dem_compare_paired(0, a3, s3, b3, s3, 0.05, DEM_TEST_GREATER, &c, &err),
+  ck_assert_int_eq(dem_compare_paired(0, a3, s3, b3, s3, 0.05, DEM_TEST_GREATER, &c, &q, &err),
                    DEM_ERANGE);
   double s0[2] = {0.3, 0.0}, an[2] = {2.0, NAN};
-  ck_assert_int_eq(dem_compare_paired(2, a3, s0, b3, s3, 0.05, DEM_TEST_GREATER, &c, &err),
-                   DEM_ERANGE);
+  ck_assert_int_eq(dem_compare_paired(2, a3, s0, b3, s3, 0.05, DEM_TEST_GREATER, &c, NULL,
+                                      &err), DEM_ERANGE);
   ck_assert(strstr(err.msg, "pair 1"));
-  ck_assert_int_eq(dem_compare_paired(2, an, s3, b3, s3, 0.05, DEM_TEST_GREATER, &c, &err),
-                   DEM_ENONFINITE);
+  ck_assert_int_eq(dem_compare_paired(2, an, s3, b3, s3, 0.05, DEM_TEST_GREATER, &c, NULL,
+                                      &err), DEM_ENONFINITE);
+  ck_assert_int_eq(dem_compare_paired(2, a3, s3, b3, s3, 0.5, DEM_TEST_GREATER, &c, NULL, &err),
+                   DEM_ERANGE);
+  ck_assert(strstr(err.msg, "level = 0.5"));
 }
 END_TEST
 

@@ -67,8 +67,8 @@ static void kpa(char *b, size_t n, const dem_series_stats *s) {
  * - a scalar statistic (a relative slope, an h/r, a deviation in sd) by its mean over the
  *   beds; a slope relative to a mean as mean slope / mean value (the trend of the mean curve);
  * - a difference of two runs on the same bed by the paired test over the beds
- *   (dem_compare_paired: the runs' own errors, or the spread of the difference between beds
- *   with Student's t of k - 1 dof if that is larger).
+ *   (dem_compare_paired: the runs' own errors and z, or, if Cochran's Q finds the difference
+ *   varying between beds beyond those errors, its spread and Student's t of k - 1 dof).
  * With one replicate (quick, smoke) this is the single-bed criterion unchanged. */
 #define VH_MAX_REPLICATES 4
 
@@ -82,11 +82,11 @@ static int nreplicates(const vh *h) {
 static int on_replicates(vh *h, vh_case_result *r, const vh_indent *in, const char *label,
                          int *idx, dem_err *err);
 
-/* The replicates whose runs (every one of idx[j * stride + o], o < nper) succeeded; their
- * indices into idx[] / stride in use[]. Returns their number. */
+/* The replicates j < k whose runs idx[j * nper + o] (o < nper: the runs of replicate j)
+ * all succeeded, in use[]. Returns their number. */
 static int usable(const vh *h, const int *idx, int k, int nper, int *use);
 
-/* " on n of k beds" / " (mean over k replicate beds)" for the values printed. */
+/* "; mean over k replicate beds" (or "over n of k") after the values printed; "" for k = 1. */
 static void reps_note(char *buf, size_t len, int n, int k) {
   if (k <= 1) buf[0] = 0;
   else if (n == k) snprintf(buf, len, "; mean over %d replicate beds", k);
@@ -285,7 +285,8 @@ static int paired_greater(const vh *h, const dem_series_stats *const *sa,
     b[j] = sb[j]->mean, seb[j] = sb[j]->se;
   }
   dem_err e = {0};
-  return dem_compare_paired((size_t)n, a, sea, b, seb, h->level, DEM_TEST_GREATER, z, &e);
+  return dem_compare_paired((size_t)n, a, sea, b, seb, h->level, DEM_TEST_GREATER, z, NULL,
+                            &e);
 }
 
 /* ---- 1. plateau ------------------------------------------------------------------------ */

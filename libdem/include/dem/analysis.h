@@ -186,16 +186,22 @@ int dem_replicates_mean(size_t k, const double *means, double *mean, double *se,
 
 /* Paired comparison over k >= 1 replicate beds: on bed i the two runs a_i, b_i (means with
  * standard errors se_a[i], se_b[i] > 0) share the bed, so the test is on the differences
- * d_i = a_i - b_i, whose mean dbar carries
- *   s_w^2 = sum (se_a[i]^2 + se_b[i]^2) / k^2   (the runs' own fluctuation) and, for k >= 2,
- *   s_b^2 = var(d_i) / k                         (the spread of d between beds, k - 1 dof).
- * se = sqrt(max(s_w^2, s_b^2)): a difference that swings from bed to bed more than the runs'
- * errors explain is judged by its spread, with Student's t of k - 1 degrees of freedom (the
- * paired t-test); otherwise z. k = 1 is dem_compare_means(a_0, se_a[0], b_0, se_b[0]).
- * out->diff = dbar, out->se = se. DEM_ERANGE (k = 0, se <= 0, level), DEM_ENONFINITE. */
+ * d_i = a_i - b_i (variance s_i^2 = se_a[i]^2 + se_b[i]^2) and their mean dbar. Whether d
+ * varies between beds beyond the runs' own errors is decided by Cochran's heterogeneity
+ * statistic Q = sum (d_i - d_w)^2 / s_i^2 (d_w the inverse-variance weighted mean), chi^2
+ * with k - 1 dof if the beds share one true difference, at the same `level`:
+ * - not heterogeneous: se = sqrt(sum s_i^2) / k and the z-test;
+ * - heterogeneous: se = sd(d_i) / sqrt(k) and Student's t with k - 1 dof (the paired t-test;
+ *   with two beds t_0.95 = 6.31), so a difference whose sign swings between beds is not
+ *   called a difference.
+ * (Choosing the spread whenever it exceeds the runs' errors would use t_1 a third of the
+ * time for two beds with no bed effect at all: Q > 1 has probability 0.32 under chi^2_1.)
+ * k = 1 is dem_compare_means(a_0, se_a[0], b_0, se_b[0]). out->diff = dbar, out->se = se,
+ * out->nu = INFINITY (z) or k - 1 (t); *q (if not NULL) = Q (0 for k = 1).
+ * DEM_ERANGE (k = 0, se <= 0, level), DEM_ENONFINITE. */
 int dem_compare_paired(size_t k, const double *a, const double *se_a, const double *b,
                        const double *se_b, double level, dem_alternative alt,
-                       dem_comparison *out, dem_err *err);
+                       dem_comparison *out, double *q, dem_err *err);
 
 /* ---- measurement volumes --------------------------------------------------------------- */
 

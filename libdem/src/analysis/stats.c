@@ -252,10 +252,14 @@ int dem_replicates_mean(size_t k, const double *means, double *mean, double *se,
 
 int dem_compare_paired(size_t k, const double *a, const double *se_a, const double *b,
                        const double *se_b, double level, dem_alternative alt,
-                       dem_comparison *out, dem_err *err) {
+                       dem_comparison *out, double *q, dem_err *err) {
+  if (q) *q = 0.0;
   if (k == 0) return dem_err_set(err, DEM_ERANGE, "compare_paired: k = 0, need at least 1");
   if (k == 1) return dem_compare_means(a[0], se_a[0], b[0], se_b[0], level, alt, out, err);
-  double dbar = 0.0, sw2 = 0.0;
+  if (!(level > 0.0 && level < 0.5))
+    return dem_err_set(err, DEM_ERANGE, "compare_paired: level = %g, must be in (0, 0.5)",
+                       level);
+  double dbar = 0.0, sw2 = 0.0, wsum = 0.0, dw = 0.0;
   for (size_t i = 0; i < k; i++) {
     if (!isfinite(a[i]) || !isfinite(b[i]) || !isfinite(se_a[i]) || !isfinite(se_b[i]))
       return dem_err_set(err, DEM_ENONFINITE, "compare_paired: pair %zu: %g +- %g, %g +- %g",
@@ -263,15 +267,24 @@ int dem_compare_paired(size_t k, const double *a, const double *se_a, const doub
     if (!(se_a[i] > 0.0) || !(se_b[i] > 0.0))
       return dem_err_set(err, DEM_ERANGE, "compare_paired: pair %zu: se %g, %g, must be > 0", i,
                          se_a[i], se_b[i]);
+    double s2 = se_a[i] * se_a[i] + se_b[i] * se_b[i];
     dbar += (a[i] - b[i]) / (double)k;
-    sw2 += (se_a[i] * se_a[i] + se_b[i] * se_b[i]) / ((double)k * (double)k);
+    sw2 += s2 / ((double)k * (double)k);
+    wsum += 1.0 / s2;
+    dw += (a[i] - b[i]) / s2;
   }
-  double ss = 0.0;
-  for (size_t i = 0; i < k; i++) ss += (a[i] - b[i] - dbar) * (a[i] - b[i] - dbar);
-  double sb2 = ss / (double)(k - 1) / (double)k;
-  /* The difference's se is exact (z) when the runs' errors explain the spread between beds,
-   * else estimated from k values (t, k - 1 dof). */
-  if (sb2 > sw2)
-    return compare(dbar, sqrt(sb2), (double)(k - 1), 0.0, 0.0, INFINITY, level, alt, out, err);
+  dw /= wsum;
+  double Q = 0.0, ss = 0.0;
+  for (size_t i = 0; i < k; i++) {
+    double d = a[i] - b[i];
+    Q += (d - dw) * (d - dw) / (se_a[i] * se_a[i] + se_b[i] * se_b[i]);
+    ss += (d - dbar) * (d - dbar);
+  }
+  if (q) *q = Q;
+  /* Cochran's Q against chi^2_{k-1}: the spread of d between beds is judged by the runs'
+   * own errors (z) unless it is significantly larger (t with k - 1 dof on the spread). */
+  if (Q > gsl_cdf_chisq_Qinv(level, (double)(k - 1)))
+    return compare(dbar, sqrt(ss / (double)(k - 1) / (double)k), (double)(k - 1), 0.0, 0.0,
+                   INFINITY, level, alt, out, err);
   return compare(dbar, sqrt(sw2), INFINITY, 0.0, 0.0, INFINITY, level, alt, out, err);
 }
