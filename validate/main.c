@@ -352,6 +352,7 @@ int main(int argc, char **argv) {
     h->tier = &h->tier_own;
   }
   h->materials = materials;
+  h->cases_arg = cases;
   h->threads = (int)threads;
   h->nranks = 1;
   h->use_cache = !no_cache;

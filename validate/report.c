@@ -340,11 +340,15 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
   d_para(&d, "%s on %s, %d MPI rank(s) x %d threads; wall time %.0f s (%.1f min). The beds "
              "and runs took %.0f s (%.1f min) when they were made (%d of %d runs from the "
              "run cache). Cases: %d PASS, %d FAIL, %d "
-             "other. Produced by `dem-validate --tier %s%s%s` (docs/validation.md explains the "
+             "other. Produced by `dem-validate --tier %s%s%s%s%s%s%s` (docs/validation.md "
+             "explains the "
              "cases, criteria and settings%s).",
          when, mach, h->nranks, h->threads, wall_s, wall_s / 60, cost, cost / 60, ncached,
          h->nruns, npass, nfail, nother, t->name, h->overrides[0] ? " " : "", h->overrides,
-         h->overrides[0] ? "; the tier's numerics are overridden here" : "");
+         h->materials == DEM_SCENE_HERTZ_JKR ? " --materials " : "",
+         h->materials == DEM_SCENE_HERTZ_JKR ? dem_scene_materials_names[h->materials] : "",
+         h->cases_arg ? " --case " : "", h->cases_arg ? h->cases_arg : "",
+         h->overrides[0] ? "; the tier's settings are overridden here" : "");
   d_para(&d, "Scene: %s with "
              "every stiffness scaled by %g (by %g on the beds of the high-rate cases 10 and "
              "11), die %g d, reference bed %g d, reference sphere "

@@ -157,6 +157,7 @@ typedef struct vh {
   const vh_tier *tier;   /* the tier's table entry, or tier_own when overridden */
   vh_tier tier_own;      /* the tier with --dt-factor / --stiffness-scale applied */
   char overrides[128];   /* those options as given ("" if none), for the report */
+  const char *cases_arg; /* --case as given (NULL: the tier's cases), for the report */
   dem_scene_materials materials; /* pasha-simplified (chapters 6/7, every case; default) or
                                     hertz-jkr (chapter 5's glass beads, cases 1-4 only) */
   char out[512];
