@@ -155,7 +155,7 @@ typedef struct vh_case_result {
 
 typedef struct vh {
   const vh_tier *tier;   /* the tier's table entry, or tier_own when overridden */
-  vh_tier tier_own;      /* the tier with --dt-factor / --stiffness-scale applied */
+  vh_tier tier_own;      /* the tier with --dt-factor / --stiffness-scale / --replicates */
   char overrides[128];   /* those options as given ("" if none), for the report */
   const char *cases_arg; /* --case as given (NULL: the tier's cases), for the report */
   dem_scene_materials materials; /* pasha-simplified (chapters 6/7, every case; default) or
