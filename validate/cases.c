@@ -62,7 +62,8 @@ static void kpa(char *b, size_t n, const dem_series_stats *s) {
  * A criterion read off one run (the plateau's slope, the dynamic bin's 90 % point, the solids
  * fraction under an indenter) swings from bed to bed at thesis scale as much as between the
  * runs it compares (docs/validation.md, "the servo without its dashpots"). The cases that
- * judge such criteria (1, 4, 6) therefore make their runs on each of the tier's replicate
+ * judge such criteria (1, 4, 6, and 3's wall confinement on the shallow bed) therefore
+ * make their runs on each of the tier's replicate
  * beds (seeds 1..k, vh_bed_ref) and judge:
  * - a scalar statistic (a relative slope, an h/r, a deviation in sd) by its mean over the
  *   beds; a slope relative to a mean as mean slope / mean value (the trend of the mean curve);
@@ -77,10 +78,12 @@ static int nreplicates(const vh *h) {
   return k < 1 ? 1 : k > VH_MAX_REPLICATES ? VH_MAX_REPLICATES : k;
 }
 
-/* The indentation `in` on every replicate bed; idx[j] its run on replicate j. The first
- * replicate's run is labelled `label`, the others "label, seed s". Returns the count or -1. */
-static int on_replicates(vh *h, vh_case_result *r, const vh_indent *in, const char *label,
-                         int *idx, dem_err *err);
+/* The indentation `in` on every replicate bed of height `bed` [d] (0: the tier's reference
+ * bed; another height in its die and at its speed, at_height); idx[j] its run on replicate j.
+ * The first replicate's run is labelled `label`, the others "label, seed s". Returns the
+ * count or -1. */
+static int on_replicates(vh *h, vh_case_result *r, const vh_indent *in, double bed,
+                         const char *label, int *idx, dem_err *err);
 
 /* The replicates j < k whose runs idx[j * nper + o] (o < nper: the runs of replicate j)
  * all succeeded, in use[]. Returns their number. */
@@ -250,15 +253,17 @@ static void names_D(char names[][24], const double *D, int n, const char *fmt) {
   for (int i = 0; i < n; i++) snprintf(names[i], 24, fmt, D[i]);
 }
 
-static int on_replicates(vh *h, vh_case_result *r, const vh_indent *in, const char *label,
-                         int *idx, dem_err *err) {
+static int on_replicates(vh *h, vh_case_result *r, const vh_indent *in, double bed,
+                         const char *label, int *idx, dem_err *err) {
   const int k = nreplicates(h);
   for (int j = 0; j < k; j++) {
     vh_bed b = vh_bed_ref(h, j);
+    vh_indent x = *in;
+    if (bed > 0) at_height(h, &b, &x, bed);
     char lab[40];
     if (j == 0) snprintf(lab, sizeof lab, "%.39s", label);
     else snprintf(lab, sizeof lab, "%.28s, seed %lu", label, b.seed);
-    if ((idx[j] = add_run_x(h, r, &b, in, lab, NAN, err)) < 0) return -1;
+    if ((idx[j] = add_run_x(h, r, &b, &x, lab, NAN, err)) < 0) return -1;
   }
   return k;
 }
@@ -298,7 +303,7 @@ static int c_plateau(vh *h, vh_case_result *r, dem_err *err) {
   char lab[40];
   snprintf(lab, sizeof lab, "sphere %g d", in.D);
   int idx[VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
-  int k = on_replicates(h, r, &in, lab, idx, err);
+  int k = on_replicates(h, r, &in, 0, lab, idx, err);
   if (k < 0) return err->code;
   int n = usable(h, idx, k, 1, use);
   const vh_tier *t = h->tier;
@@ -481,28 +486,49 @@ static int c_size(vh *h, vh_case_result *r, dem_err *err) {
   else {
     snprintf(c->ours, sizeof c->ours, "only one size >= %g d in this tier", t->stable_from);
   }
-  /* very large indenter on the shallow bed (wall confinement, Fig 5.6) */
-  vh_bed b = vh_bed_ref(h, 0);
+  /* Very large indenter on the shallow bed (wall confinement, Fig 5.6): both balls on each
+   * replicate shallow bed, the difference judged by the paired test over the beds. One bed
+   * read the 25 d ball 1.5 standard errors below the 13 d ball at thesis scale and 3.5 in the
+   * quick tier (docs/validation.md): a same-bed difference of ~10 % is as large as a bed's
+   * swing, the situation the replicates of cases 1, 4 and 6 are for. */
   vh_indent in = vh_indent_ref(h);
-  at_height(h, &b, &in, t->beds[0]);
-  in.D = t->bed_indenter;
+  const double shallow = t->beds[0];
+  int iw[2][VH_MAX_REPLICATES], k = 0;
+  const double Dw[2] = {t->bed_indenter, t->wall_indenter};
   char lab[40];
-  snprintf(lab, sizeof lab, "bed %g d, D %g d", b.bed, in.D);
-  int i1 = add_run_x(h, r, &b, &in, lab, NAN, err);
-  if (i1 < 0) return err->code;
-  in.D = t->wall_indenter;
-  snprintf(lab, sizeof lab, "bed %g d, D %g d", b.bed, in.D);
-  int i2 = add_run_x(h, r, &b, &in, lab, NAN, err);
-  if (i2 < 0) return err->code;
+  for (int o = 0; o < 2; o++) {
+    in.D = Dw[o];
+    snprintf(lab, sizeof lab, "bed %g d, D %g d", shallow, in.D);
+    if ((k = on_replicates(h, r, &in, shallow, lab, iw[o], err)) < 0) return err->code;
+  }
+  vh_bed b = vh_bed_ref(h, 0);
+  at_height(h, &b, &in, shallow);
   snprintf(what, sizeof what, "on the %g d bed in the %g d die, the %g d indenter reads higher "
                               "than the %g d one (wall confinement)",
-           t->beds[0], b.die, t->wall_indenter, t->bed_indenter);
-  c = check(r, what, "z, one-sided, level 0.05",
+           shallow, b.die, t->wall_indenter, t->bed_indenter);
+  c = check(r, what, k > 1 ? "paired over the replicate beds, one-sided, level 0.05"
+                           : "z, one-sided, level 0.05",
             "22-25 mm on the 13 mm bed ~10 kPa vs ~8 kPa (Fig 5.6)");
-  char a[24], bb[24];
-  snprintf(a, sizeof a, "%g d", t->wall_indenter);
-  snprintf(bb, sizeof bb, "%g d", t->bed_indenter);
-  greater(h, c, i2, i1, a, bb);
+  int comb[2 * VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
+  for (int j = 0; j < k; j++) comb[2 * j] = iw[0][j], comb[2 * j + 1] = iw[1][j];
+  int n = usable(h, comb, k, 2, use);
+  const dem_series_stats *sw[VH_MAX_REPLICATES], *sr[VH_MAX_REPLICATES];
+  double mw = 0, mr = 0;
+  char rn[64], pb[96] = "";
+  reps_note(rn, sizeof rn, n, k);
+  for (int j = 0; j < n; j++) {
+    sw[j] = &h->runs[iw[1][use[j]]].sH, sr[j] = &h->runs[iw[0][use[j]]].sH;
+    mw += sw[j]->mean / n, mr += sr[j]->mean / n;
+    per_bed(pb, sizeof pb, j, k, 2, (sw[j]->mean - sr[j]->mean) / 1e3);
+  }
+  dem_comparison z;
+  if (n > 0 && !paired_greater(h, sw, sr, n, &z)) {
+    snprintf(c->ours, sizeof c->ours, "H(%g d) %.2f, H(%g d) %.2f kPa; %s = %.2f (crit %.2f), "
+                                      "p = %.3g%s%s%s",
+             t->wall_indenter, mw / 1e3, t->bed_indenter, mr / 1e3, zt(&z), z.z, z.z_crit, z.p,
+             pb, k > 1 ? " kPa difference" : "", rn);
+    c->status = pass(z.different);
+  }
   finish(h, r);
   return DEM_OK;
 }
@@ -544,7 +570,7 @@ static int c_depth(vh *h, vh_case_result *r, dem_err *err) {
   char lab[40];
   snprintf(lab, sizeof lab, "sphere %g d", in.D);
   int idx[VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
-  int k = on_replicates(h, r, &in, lab, idx, err);
+  int k = on_replicates(h, r, &in, 0, lab, idx, err);
   if (k < 0) return err->code;
   int n = usable(h, idx, k, 1, use);
   char rn[64];
@@ -627,7 +653,7 @@ static int c_shape(vh *h, vh_case_result *r, dem_err *err) {
   for (int o = 0; o < 3; o++) {
     vh_indent in = vh_indent_ref(h);
     in.shape = (dem_indenter_shape)o;
-    if ((k = on_replicates(h, r, &in, sn[o], idx[o], err)) < 0) return err->code;
+    if ((k = on_replicates(h, r, &in, 0, sn[o], idx[o], err)) < 0) return err->code;
   }
   int comb[3 * VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
   for (int j = 0; j < k; j++)

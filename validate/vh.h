@@ -25,7 +25,7 @@
 #define VH_MAX_RUNS 96
 #define VH_MAX_BEDS 24
 #define VH_MAX_CHECKS 8
-#define VH_MAX_CASE_RUNS 12
+#define VH_MAX_CASE_RUNS 16
 #define VH_MAX_CASES 16
 /* Cases 1-4 (bits 0-3) reproduce chapter 5, whose runs used its own materials (hertz-jkr) */
 #define VH_CHAPTER5_CASES 0xf
