@@ -241,6 +241,35 @@ START_TEST(test_relax_interrupted) {
 }
 END_TEST
 
+/* Progress lines of the unload stage name its two phases: "unload" while the piston
+ * retracts, then "relax" (never "unload" again) once the piston has left the bed. */
+typedef struct {
+  int n_unload, n_relax, unload_after_relax;
+} stage_seen;
+static void seen_hook(const char *stage, double t, double frac, double eta, void *user) {
+  (void)t, (void)frac, (void)eta;
+  stage_seen *s = user;
+  if (strcmp(stage, "unload") == 0) {
+    s->n_unload++;
+    if (s->n_relax) s->unload_after_relax = 1;
+  }
+  else if (strcmp(stage, "relax") == 0) s->n_relax++;
+}
+
+START_TEST(test_relax_progress) {
+  stage_seen seen = {0, 0, 0};
+  dem_scene_hooks h = {seen_hook, 0.0, NULL, 0.0, &seen};
+  dem_scene *sc = consolidated(&h);
+  memset(&seen, 0, sizeof seen);
+  dem_err err;
+  ck_assert_msg(dem_scene_unload(sc, &err) == DEM_OK, "%s", err.msg);
+  ck_assert_msg(seen.n_unload > 0 && seen.n_relax > 0 && !seen.unload_after_relax,
+                "progress: %d unload, %d relax, unload after relax %d", seen.n_unload,
+                seen.n_relax, seen.unload_after_relax);
+  dem_scene_free(sc);
+}
+END_TEST
+
 START_TEST(test_config_errors) {
   dem_scene_config c;
   small(&c);
@@ -328,6 +357,7 @@ int main(void) {
   tcase_add_test(tc, test_servo_ki);
   tcase_add_test(tc, test_pipeline);
   tcase_add_test(tc, test_relax_interrupted);
+  tcase_add_test(tc, test_relax_progress);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   srunner_run_all(sr, CK_NORMAL);

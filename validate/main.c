@@ -12,13 +12,13 @@
  * check), 3 a criterion failed, 4 a criterion that passed in the --baseline file failed,
  * 1 a run or the report failed, 2 usage error.
  */
+#include <errno.h>
 #include <getopt.h>
 #include <jansson.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <math.h>
-#include <sys/stat.h>
 
 #ifdef VH_HAVE_MPI
 #include <mpi.h>
@@ -40,7 +40,7 @@ static void usage(FILE *f) {
           "             same geometry, all eleven cases, ~30 min), full (thesis scale, all\n"
           "             eleven cases, hours) or smoke (tests only)\n"
           "  --case     run only these cases (see --list), at the tier's scale\n"
-          "  --out      report folder (default validation-<tier>)\n"
+          "  --out      report folder, created with its parents (default validation-<tier>)\n"
           "  --beds     folder of prepared beds, reused across invocations (default OUT/beds)\n"
           "  --threads  OpenMP threads per run (default 2)\n"
           "  --level    significance level of every test (default 0.05)\n"
@@ -64,7 +64,8 @@ static void usage(FILE *f) {
           "             cases it runs)\n"
           "  --replicates N  replicate beds (seeds 1..N, N <= 4) on which the cases whose\n"
           "             criteria swing from bed to bed (plateau, penetration-depth,\n"
-          "             indenter-shape) make their runs and are judged paired over the beds;\n"
+          "             indenter-shape, indenter-size's wall confinement on the 13 d bed)\n"
+          "             make their runs and are judged paired over the beds;\n"
           "             and from which cases 2, 8, 9 estimate the bed-to-bed spread (default:\n"
           "             the tier's: 1 quick and smoke, 2 medium and full)\n",
           prog, prog);
@@ -384,10 +385,9 @@ int main(int argc, char **argv) {
   else snprintf(h->out, sizeof h->out, "validation-%s", t->name);
   if (beds) snprintf(h->beds_dir, sizeof h->beds_dir, "%s", beds);
   else snprintf(h->beds_dir, sizeof h->beds_dir, "%.500s/beds", h->out);
-  mkdir(h->out, 0777);
-  struct stat st;
-  if (stat(h->out, &st) || !S_ISDIR(st.st_mode)) {
-    fprintf(stderr, "%s: --out %s: cannot create the folder\n", prog, h->out);
+  if (vh_mkdirs(h->out)) {
+    fprintf(stderr, "%s: --out %s: cannot create the folder: %s\n", prog, h->out,
+            strerror(errno));
     return CLI_EXIT_RUN;
   }
 

@@ -1,6 +1,7 @@
 /* report.c — the report of a validation run: report.md and report.html (one content, two
  * renderings), summary.json, per-run data files and gnuplot PNG figures in the out folder.
  * Every file is written to a temporary name and renamed. */
+#include <errno.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdarg.h>
@@ -301,8 +302,10 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
   vh_case_result *res = (vh_case_result *)cres;
   char dir[600];
   snprintf(dir, sizeof dir, "%s/data", h->out);
-  mkdir(dir, 0777);
   int rc;
+  if (vh_mkdirs(dir))
+    return dem_err_set(err, DEM_EIO, "dem-validate: cannot create the folder %s: %s", dir,
+                       strerror(errno));
   for (int i = 0; i < h->nruns; i++)
     if (h->runs[i].status == DEM_OK && (rc = write_run_data(h, i, err))) return rc;
   int plots = have_gnuplot();

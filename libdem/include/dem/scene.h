@@ -89,8 +89,11 @@ void dem_scene_config_defaults(dem_scene_config *c, dem_scene_materials m);
 /* Range checks of every field; messages name the field, value and allowed range. */
 int dem_scene_config_check(const dem_scene_config *c, dem_err *err);
 
-/* Progress and snapshots: called by the stages (may be NULL). frac in [0, 1] or < 0 if
- * unknown; eta in s of wall clock for the stage, < 0 if unknown. */
+/* Progress and snapshots: called by the stages (may be NULL). stage: "settle",
+ * "consolidate", "unload" (the piston retracting until it loses the bed), "relax" (the
+ * unload stage's wait for the bed to come to rest; snapshots name it "unload"), "indent",
+ * "withdraw". frac in [0, 1] or < 0 if unknown; eta in s of wall clock for the stage, < 0 if
+ * unknown. */
 typedef struct dem_scene_hooks {
   void (*progress)(const char *stage, double t, double frac, double eta, void *user);
   double progress_interval;  /* s of wall clock between progress calls */

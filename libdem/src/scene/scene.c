@@ -409,7 +409,11 @@ static int after_row(dem_scene *sc, double frac, dem_err *err) {
   double now = wall_now();
   if (h->progress && now - sc->last_progress >= h->progress_interval) {
     double eta = frac > 1e-3 ? (now - sc->stage_wall0) * (1.0 - frac) / frac : -1.0;
-    h->progress(stage_names[sc->stage], st.time, frac, eta, h->user);
+    /* the unload stage's relax phase (piston withdrawn, the bed coming to rest) is named in
+     * the progress, so that a log shows which of the two takes the time; snapshots keep the
+     * stage's name */
+    const char *name = sc->stage == 2 && sc->sub == 2 ? "relax" : stage_names[sc->stage];
+    h->progress(name, st.time, frac, eta, h->user);
     sc->last_progress = now;
   }
   return DEM_OK;
