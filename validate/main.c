@@ -308,7 +308,14 @@ int main(int argc, char **argv) {
       for (int i = 0; i < vh_ncases; i++)
         if (strlen(vh_cases[i].name) == m && strncmp(vh_cases[i].name, p, m) == 0) found = 1;
       if (!found) {
-        dem_err_set(&err, DEM_EINVAL, "--case %.*s: unknown case (see --list)", (int)m, p);
+        char names[400];
+        size_t k = 0;
+        names[0] = '\0';
+        for (int i = 0; i < vh_ncases && k < sizeof names; i++)
+          k += (size_t)snprintf(names + k, sizeof names - k, "%s%s", i ? ", " : "",
+                                vh_cases[i].name);
+        dem_err_set(&err, DEM_EINVAL, "--case %.*s: unknown case (allowed: %s)", (int)m, p,
+                    names);
         goto usage_error;
       }
       for (int i = 0; i < vh_ncases; i++)

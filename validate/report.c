@@ -360,8 +360,9 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
              "indented at the reference bed's speed in m/s (gamma* x reference / bed; the "
              "bed table lists it), dt = %g sqrt(m_min / k_max). Plateau window h/r %.2f-%.2f; "
              "early window %.2f-%.2f; significance level %.2f; %d replicate bed(s) (seeds "
-             "1-%d: the runs of cases 1, 4 and 6 are made on each and judged over them, cases "
-             "2, 8 and 9 take the bed-to-bed spread from them).",
+             "1-%d: the runs of cases 1, 4 and 6 and of case 3's wall confinement on the "
+             "shallow bed are made on each and judged over them, cases 2, 8 and 9 take the "
+             "bed-to-bed spread from them).",
          h->materials == DEM_SCENE_HERTZ_JKR
              ? "chapter 5 materials (hertz-jkr: cohesive glass beads, Hertz + modified JKR "
                "between particles, thesis Tables 5.1-5.3; the indenter is Material 1 with "
