@@ -21,6 +21,7 @@
 #include <time.h>
 
 #include "dem/impact.h"
+#include "dem/table.h"
 
 typedef struct {
   const char *name;
@@ -45,8 +46,9 @@ static double now(void) {
 
 int main(int argc, char **argv) {
   const char *dir = argc > 1 ? argv[1] : "bench-out";
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "dem-bench-impact: cannot create %s: %s\n", dir, strerror(errno));
+  dem_err merr = {0};
+  if (dem_mkdirs(dir, &merr)) {
+    fprintf(stderr, "dem-bench-impact: %s\n", merr.msg);
     return 1;
   }
   char path[4096], tmp[4200];

@@ -47,6 +47,7 @@
 #include "dem/analysis.h"
 #include "dem/engine.h"
 #include "dem/scene.h"
+#include "dem/table.h"
 
 #define G_ACC 9.81
 #define D_MEAN 1e-3          /* m */
@@ -878,8 +879,9 @@ int main(int argc, char **argv) {
     usage(stderr);
     return EXIT_USAGE_;
   }
-  if (mkdir(o.out, 0777) && errno != EEXIST) {
-    fprintf(stderr, "dem-bench-scene: cannot create %s: %s\n", o.out, strerror(errno));
+  dem_err err = {0};
+  if (dem_mkdirs(o.out, &err)) {
+    fprintf(stderr, "dem-bench-scene: --out %s: %s\n", o.out, err.msg);
     return EXIT_RUN_;
   }
   return o.study == 0 ? study_speed(&o) : o.study == 1 ? study_stability(&o)

@@ -42,6 +42,7 @@
 
 #include "dem/impact.h"
 #include "dem/material.h"
+#include "dem/table.h"
 
 #define NV 3
 static const double vels[NV] = {2.0, 5.0, 10.0}; /* m/s, physics notes */
@@ -145,8 +146,9 @@ int main(int argc, char **argv) {
     fprintf(stderr, "dem-bench-stability: unknown law '%s'\n", only);
     return 2;
   }
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "dem-bench-stability: cannot create %s: %s\n", dir, strerror(errno));
+  dem_err merr = {0};
+  if (dem_mkdirs(dir, &merr)) {
+    fprintf(stderr, "dem-bench-stability: %s\n", merr.msg);
     return 1;
   }
   char path[4096], tmp[4200];

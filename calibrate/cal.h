@@ -223,7 +223,6 @@ int cal_statistics(cal_problem *p, const double *u, cal_stats *st, dem_err *err)
 
 /* ---- output (output.c, plots.c, json.c) ------------------------------------------------- */
 
-int cal_mkdirs(const char *dir, dem_err *err);
 /* Open dir/name.tmp for writing; cal_commit renames it to dir/name. */
 FILE *cal_tmp_open(const char *dir, const char *name, char *tmp, size_t n, dem_err *err);
 int cal_commit(FILE *f, const char *tmp, dem_err *err);

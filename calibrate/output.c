@@ -22,22 +22,6 @@
 
 #include "cal.h"
 
-int cal_mkdirs(const char *dir, dem_err *err) {
-  char buf[CAL_PATH_LEN];
-  snprintf(buf, sizeof buf, "%s", dir);
-  for (char *p = buf + 1;; p++) {
-    char ch = *p;
-    if (ch == '/' || ch == '\0') {
-      *p = '\0';
-      if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-        return dem_err_set(err, DEM_EIO, "cannot create folder '%s': %s", buf, strerror(errno));
-      *p = ch;
-    }
-    if (ch == '\0') break;
-  }
-  return DEM_OK;
-}
-
 FILE *cal_tmp_open(const char *dir, const char *name, char *tmp, size_t n, dem_err *err) {
   snprintf(tmp, n, "%s/%s.tmp", dir, name);
   FILE *f = fopen(tmp, "w");

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cal.h"
+#include "dem/table.h"
 
 static volatile sig_atomic_t stop_requested = 0;
 
@@ -33,7 +34,7 @@ int cal_run(cal_config *c, const cal_run_opts *o, cal_result *res, cal_stats *st
     snprintf(outdir, sizeof outdir, "%s", o->outdir);
   else
     snprintf(outdir, sizeof outdir, "out/calibrate/%s", c->name);
-  int rc = cal_mkdirs(outdir, err);
+  int rc = dem_mkdirs(outdir, err);
   if (rc) return rc;
   cal_problem p;
   memset(&p, 0, sizeof p);

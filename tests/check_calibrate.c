@@ -20,12 +20,13 @@
 #include "cal.h"
 #include "curve.h"
 #include "dem/impact.h"
+#include "dem/table.h"
 
 #define TMPDIR DEM_BINARY_DIR "/test-out/check_calibrate"
 
 static void mkpath(const char *d) {
   dem_err e = {0};
-  ck_assert_int_eq(cal_mkdirs(d, &e), DEM_OK);
+  ck_assert_int_eq(dem_mkdirs(d, &e), DEM_OK);
 }
 
 /* Load `text` as config "<TMPDIR>/<name>.cfg"; return the status, message in e. */

@@ -1,6 +1,7 @@
 /* Core module tests: errors, parameter sets, reduced properties, time steps, damping. */
 #include <check.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -8,6 +9,7 @@
 #include "dem/error.h"
 #include "dem/material.h"
 #include "dem/params.h"
+#include "dem/table.h"
 
 START_TEST(test_strerror) {
   ck_assert_str_eq(dem_strerror(DEM_OK), "success");
@@ -128,6 +130,37 @@ START_TEST(test_hertz_force) {
 }
 END_TEST
 
+START_TEST(test_mkdirs) {
+  /* mkdir -p makes every level, is idempotent, and names the level that fails and why. */
+  const char *base = DEM_BINARY_DIR "/test-out/check_core_mkdirs";
+  char d[700], f[512];
+  dem_err err = {0};
+  snprintf(d, sizeof d, "%s/a/b/c", base);
+  ck_assert_int_eq(dem_mkdirs(d, &err), DEM_OK);
+  ck_assert_int_eq(dem_mkdirs(d, &err), DEM_OK);
+  snprintf(d, sizeof d, "%s/a/b/c/", base); /* a trailing slash is the same folder */
+  ck_assert_int_eq(dem_mkdirs(d, &err), DEM_OK);
+  snprintf(f, sizeof f, "%s/file", base);
+  FILE *fp = fopen(f, "w");
+  ck_assert_ptr_nonnull(fp);
+  fclose(fp);
+  ck_assert_int_eq(dem_mkdirs(f, &err), DEM_EIO); /* exists, but is not a folder */
+  ck_assert_ptr_nonnull(strstr(err.msg, "file': Not a directory"));
+  snprintf(d, sizeof d, "%s/x/y", f); /* through a file: the first level below it fails */
+  ck_assert_int_eq(dem_mkdirs(d, &err), DEM_EIO);
+  char want[800];
+  snprintf(want, sizeof want, "cannot create the folder '%s/x': Not a directory", f);
+  ck_assert_str_eq(err.msg, want);
+  ck_assert_int_eq(dem_mkdirs("", &err), DEM_EINVAL);
+  char *longp = malloc(DEM_PATH_MAX + 1);
+  memset(longp, 'a', DEM_PATH_MAX);
+  longp[DEM_PATH_MAX] = '\0';
+  ck_assert_int_eq(dem_mkdirs(longp, &err), DEM_EINVAL);
+  ck_assert_ptr_nonnull(strstr(err.msg, "allowed up to 4095"));
+  free(longp);
+}
+END_TEST
+
 static Suite *suite(void) {
   Suite *s = suite_create("core");
   TCase *tc = tcase_create("core");
@@ -139,6 +172,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_eta_linear);
   tcase_add_test(tc, test_eta_hertz);
   tcase_add_test(tc, test_hertz_force);
+  tcase_add_test(tc, test_mkdirs);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -25,6 +25,7 @@
 #endif
 
 #include "cli_common.h"
+#include "dem/table.h"
 #include "vh.h"
 
 static const char *prog = "dem-validate";
@@ -64,7 +65,7 @@ static void usage(FILE *f) {
           "             cases it runs)\n"
           "  --replicates N  replicate beds (seeds 1..N, N <= 4) on which the cases whose\n"
           "             criteria swing from bed to bed (plateau, penetration-depth,\n"
-          "             indenter-shape, indenter-size's wall confinement on the 13 d bed)\n"
+          "             indenter-shape, indenter-size's wall confinement on the shallow bed)\n"
           "             make their runs and are judged paired over the beds;\n"
           "             and from which cases 2, 8, 9 estimate the bed-to-bed spread (default:\n"
           "             the tier's: 1 quick and smoke, 2 medium and full)\n",
@@ -392,9 +393,8 @@ int main(int argc, char **argv) {
   else snprintf(h->out, sizeof h->out, "validation-%s", t->name);
   if (beds) snprintf(h->beds_dir, sizeof h->beds_dir, "%s", beds);
   else snprintf(h->beds_dir, sizeof h->beds_dir, "%.500s/beds", h->out);
-  if (vh_mkdirs(h->out)) {
-    fprintf(stderr, "%s: --out %s: cannot create the folder: %s\n", prog, h->out,
-            strerror(errno));
+  if (dem_mkdirs(h->out, &err)) {
+    fprintf(stderr, "%s: --out %s: %s\n", prog, h->out, err.msg);
     return CLI_EXIT_RUN;
   }
 

@@ -13,6 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "dem/table.h"
 #include "vh.h"
 
 /* ---- a document written as Markdown and HTML at once ---------------------------------- */
@@ -303,9 +304,10 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
   char dir[600];
   snprintf(dir, sizeof dir, "%s/data", h->out);
   int rc;
-  if (vh_mkdirs(dir))
-    return dem_err_set(err, DEM_EIO, "dem-validate: cannot create the folder %s: %s", dir,
-                       strerror(errno));
+  if ((rc = dem_mkdirs(dir, err))) {
+    dem_err_prefix(err, "dem-validate: ");
+    return rc;
+  }
   for (int i = 0; i < h->nruns; i++)
     if (h->runs[i].status == DEM_OK && (rc = write_run_data(h, i, err))) return rc;
   int plots = have_gnuplot();

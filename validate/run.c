@@ -155,30 +155,6 @@ static void bed_name(const vh *h, const vh_bed *b, char *buf, size_t len) {
            other ? dem_scene_materials_names[h->materials] : "");
 }
 
-/* mkdir -p: every missing folder of dir; 0 or -1 with errno of the level that failed (a
- * path that exists but is not a writable folder fails as well). */
-int vh_mkdirs(const char *dir) {
-  char tmp[1024];
-  if (snprintf(tmp, sizeof tmp, "%s", dir) >= (int)sizeof tmp) {
-    errno = ENAMETOOLONG;
-    return -1;
-  }
-  for (char *p = tmp + 1; *p; p++)
-    if (*p == '/') {
-      *p = 0;
-      if (mkdir(tmp, 0777) != 0 && errno != EEXIST) return -1;
-      *p = '/';
-    }
-  if (mkdir(tmp, 0777) != 0 && errno != EEXIST) return -1;
-  struct stat st;
-  if (stat(tmp, &st) != 0) return -1;
-  if (!S_ISDIR(st.st_mode)) {
-    errno = ENOTDIR;
-    return -1;
-  }
-  return access(tmp, W_OK);
-}
-
 static void progress(const char *stage, double t, double frac, double eta, void *user) {
   const vh *h = user;
   if (h->verbose < 0) return;
@@ -213,9 +189,8 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
   b->cases = case_bit(h);
   char name[256];
   bed_name(h, b, name, sizeof name);
-  if (vh_mkdirs(h->beds_dir)) {
-    dem_err_set(err, DEM_EIO, "dem-validate: cannot create the bed folder %s: %s", h->beds_dir,
-                strerror(errno));
+  if (dem_mkdirs(h->beds_dir, err)) {
+    dem_err_prefix(err, "dem-validate: the bed folder: ");
     return -1;
   }
   snprintf(b->path, sizeof b->path, "%.300s/%.200s.h5", h->beds_dir, name);

@@ -195,8 +195,6 @@ extern const int vh_ncases;
 
 double vh_now(void);
 void vh_log(const vh *h, const char *fmt, ...);
-/* mkdir -p dir; 0, or -1 with errno set (also when dir is not a writable folder). */
-int vh_mkdirs(const char *dir);
 
 /* The reference bed and indenter of the tier (replicate k >= 0 changes the seed). */
 vh_bed vh_bed_ref(const vh *h, int replicate);

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define NAME_LEN 64
@@ -232,4 +233,37 @@ int dem_table_write(const dem_table *t, const char *path, dem_err *err) {
   if (!path) return dem_err_set(err, DEM_EINVAL, "table: NULL path");
   if (ends_with(path, ".h5") || ends_with(path, ".hdf5")) return dem_table_write_hdf5(t, path, err);
   return dem_table_write_csv(t, path, err);
+}
+
+/* Each level is made in turn; EEXIST is fine at any level (a parent that is a file is caught
+ * by the next level's ENOTDIR, the last level by the stat below). */
+int dem_mkdirs(const char *dir, dem_err *err) {
+  if (!dir || !*dir) return dem_err_set(err, DEM_EINVAL, "an empty folder name");
+  size_t n = strlen(dir);
+  if (n >= DEM_PATH_MAX)
+    return dem_err_set(err, DEM_EINVAL, "a folder name of %zu characters (allowed up to %d)", n,
+                       DEM_PATH_MAX - 1);
+  char buf[DEM_PATH_MAX];
+  memcpy(buf, dir, n + 1);
+  for (char *p = buf + 1;; p++) {
+    char ch = *p;
+    if (ch == '/' || ch == '\0') {
+      *p = '\0';
+      if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+        return dem_err_set(err, DEM_EIO, "cannot create the folder '%s': %s", buf,
+                           strerror(errno));
+      *p = ch;
+    }
+    if (ch == '\0') break;
+  }
+  struct stat st;
+  if (stat(buf, &st) != 0)
+    return dem_err_set(err, DEM_EIO, "cannot create the folder '%s': %s", buf, strerror(errno));
+  if (!S_ISDIR(st.st_mode))
+    return dem_err_set(err, DEM_EIO, "cannot create the folder '%s': %s", buf,
+                       strerror(ENOTDIR));
+  if (access(buf, W_OK) != 0)
+    return dem_err_set(err, DEM_EIO, "the folder '%s' is not writable: %s", buf,
+                       strerror(errno));
+  return DEM_OK;
 }

@@ -28,6 +28,7 @@
 #include "cli_common.h"
 #include "dem/checkpoint.h"
 #include "dem/scene.h"
+#include "dem/table.h"
 
 static const char *prog = "dem-run";
 
@@ -313,8 +314,8 @@ int main(int argc, char **argv) {
   }
   if (threads > 0) c.threads = threads;
   cli_warn_contention(prog, c.threads);
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "%s: cannot create %s: %s\n", prog, dir, strerror(errno));
+  if (dem_mkdirs(dir, &err)) {
+    cli_error(prog, &err);
     return CLI_EXIT_RUN;
   }
   out_state o = {dir, 0, 0, NULL, NULL, isatty(2)};

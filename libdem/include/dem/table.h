@@ -41,4 +41,11 @@ int dem_table_write_hdf5(const dem_table *t, const char *path, dem_err *err);
 /* By extension: .h5 / .hdf5 -> HDF5, anything else -> CSV. */
 int dem_table_write(const dem_table *t, const char *path, dem_err *err);
 
+/* mkdir -p: create dir and every missing parent (mode 0777 less the umask). DEM_OK when dir
+ * ends up an existing, writable folder; DEM_EIO naming the level that failed and why
+ * ("cannot create the folder 'a/b': Not a directory"); DEM_EINVAL for an empty path or one
+ * of DEM_PATH_MAX characters or more. The one folder-making routine of every program. */
+#define DEM_PATH_MAX 4096
+int dem_mkdirs(const char *dir, dem_err *err);
+
 #endif
