@@ -577,6 +577,97 @@ START_TEST(test_threads_reproducible) {
 }
 END_TEST
 
+/* The runaway message names the contact (run.c, overlap_error). Oracle: an undamped linear
+ * spring (e = 1) conserves energy, so when the overlap alpha first exceeds the limit the
+ * approach speed is sqrt(v0^2 - k alpha^2 / m*) and the normal force k alpha; m* = m/2 for
+ * two equal spheres, m against a fixed wall. The stop comes within one step of the limit,
+ * so alpha is read back from the engine (stats) rather than assumed. */
+static void runaway_case(int wall) {
+  dem_err err = {0};
+  int mat;
+  const double k = 1e3, r = 5e-4, v0 = 1.0, m = dem_sphere_mass(r, RHO);
+  const double ms = wall ? m : 0.5 * m, tc = sqrt(ms / k);
+  dem_sim *s = make_sim("linear", 1.0, k, &mat);
+  if (wall) {
+    dem_wall_spec fl = {DEM_WALL_PLANE, {0, 0, 0}, {0, 0, 1}, 0, {0, 0, 0}, mat};
+    ck_assert_int_eq(dem_sim_add_wall(s, &fl, NULL, &err), DEM_OK);
+    ck_assert_int_eq(dem_sim_add_particle(s, (double[3]){0, 0, r + 1e-6},
+                                          (double[3]){0, 0, -v0}, r, mat, &err), DEM_OK);
+  } else {
+    ck_assert_int_eq(dem_sim_add_particle(s, (double[3]){-r - 1e-6, 0, 0},
+                                          (double[3]){0.5 * v0, 0, 0}, r, mat, &err), DEM_OK);
+    ck_assert_int_eq(dem_sim_add_particle(s, (double[3]){r + 1e-6, 0, 0},
+                                          (double[3]){-0.5 * v0, 0, 0}, r, mat, &err), DEM_OK);
+  }
+  ck_assert_int_eq(dem_sim_set_skin(s, 0.2 * r, &err), DEM_OK);
+  ck_assert_int_eq(dem_sim_set_dt(s, 0.002 * tc, &err), DEM_OK);
+  dem_breakdown bd;
+  dem_breakdown_defaults(&bd);
+  bd.max_overlap_frac = 0.02; /* the undamped peak is v0 tc = 0.05 r (pair), 0.07 r (wall) */
+  ck_assert_int_eq(dem_sim_set_breakdown(s, &bd, &err), DEM_OK);
+  ck_assert_int_eq(dem_sim_run(s, 100000, &err), DEM_ERUNAWAY);
+  dem_sim_stats st;
+  dem_sim_get_stats(s, &st);
+  const double alpha = st.max_overlap_frac * r;
+  ck_assert(alpha > 0.02 * r && alpha < 0.021 * r);
+  const char *b = strstr(err.msg, " between particle ");
+  ck_assert_msg(b != NULL, "%s", err.msg);
+  if (wall) ck_assert_msg(strstr(err.msg, "and wall 0 (plane)") != NULL, "%s", err.msg);
+  else ck_assert_msg(strstr(err.msg, "between particle 1 ") != NULL ||
+                     strstr(err.msg, "between particle 0 ") != NULL, "%s", err.msg);
+  if (!wall) ck_assert_msg(strstr(err.msg, "and particle ") != NULL, "%s", err.msg);
+  double fn = 0.0, vn = 0.0;
+  const char *f = strstr(err.msg, "normal force "), *a = strstr(err.msg, "approach speed ");
+  ck_assert_msg(f && a, "%s", err.msg);
+  ck_assert_int_eq(sscanf(f, "normal force %lf N", &fn), 1);
+  ck_assert_int_eq(sscanf(a, "approach speed %lf m/s", &vn), 1);
+  ck_assert_msg(strstr(err.msg, "1 contact above the limit") != NULL, "%s", err.msg);
+  /* the message prints 3 significant digits: 0.5 % */
+  ck_assert_msg(fabs(fn - k * alpha) < 5e-3 * k * alpha, "fn %g, k alpha %g", fn, k * alpha);
+  const double ve = sqrt(v0 * v0 - k * alpha * alpha / ms);
+  ck_assert_msg(fabs(vn - ve) < 5e-3 * ve, "vn %g, expected %g (%s)", vn, ve, err.msg);
+  dem_sim_free(s);
+}
+
+START_TEST(test_runaway_names_contact) {
+  runaway_case(0);
+  runaway_case(1);
+}
+END_TEST
+
+/* peak_overlap_frac keeps the largest overlap of every step: a head-on undamped linear
+ * collision peaks at alpha_max = v0 sqrt(m* / k) (energy balance) and is over when the
+ * spheres separate, where max_overlap_frac is back to 0; the reset starts it again. */
+START_TEST(test_peak_overlap) {
+  dem_err err = {0};
+  int mat;
+  const double k = 1e3, r = 5e-4, v0 = 1.0, ms = 0.5 * dem_sphere_mass(r, RHO);
+  const double tc = sqrt(ms / k);
+  dem_sim *s = make_sim("linear", 1.0, k, &mat);
+  ck_assert_int_eq(dem_sim_add_particle(s, (double[3]){-r - 1e-6, 0, 0},
+                                        (double[3]){0.5 * v0, 0, 0}, r, mat, &err), DEM_OK);
+  ck_assert_int_eq(dem_sim_add_particle(s, (double[3]){r + 1e-6, 0, 0},
+                                        (double[3]){-0.5 * v0, 0, 0}, r, mat, &err), DEM_OK);
+  ck_assert_int_eq(dem_sim_set_skin(s, 0.2 * r, &err), DEM_OK);
+  const double dt = 0.002 * tc;
+  ck_assert_int_eq(dem_sim_set_dt(s, dt, &err), DEM_OK);
+  /* contact lasts pi tc; run to twice that after the 1e-6 m approach */
+  const long steps = (long)((2e-6 / v0 + 2.0 * M_PI * tc) / dt);
+  ck_assert_int_eq(dem_sim_run(s, steps, &err), DEM_OK);
+  dem_sim_stats st;
+  dem_sim_get_stats(s, &st);
+  ck_assert_double_eq(st.max_overlap_frac, 0.0);
+  const double want = v0 * tc / r; /* 0.051 */
+  /* sampled once per step: the peak is missed by at most (omega dt)^2 / 8 relative */
+  ck_assert_msg(fabs(st.peak_overlap_frac - want) < 1e-4 * want, "peak %.6g, want %.6g",
+                st.peak_overlap_frac, want);
+  dem_sim_reset_peak_overlap(s);
+  dem_sim_get_stats(s, &st);
+  ck_assert_double_eq(st.peak_overlap_frac, 0.0);
+  dem_sim_free(s);
+}
+END_TEST
+
 START_TEST(test_breakdown) {
   dem_err err = {0};
   /* NaN velocity */
@@ -1042,6 +1133,8 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_walls);
   tcase_add_test(tc, test_threads_reproducible);
   tcase_add_test(tc, test_breakdown);
+  tcase_add_test(tc, test_runaway_names_contact);
+  tcase_add_test(tc, test_peak_overlap);
   tcase_add_test(tc, test_servo);
   tcase_add_test(tc, test_servo_dashpot);
   tcase_add_test(tc, test_errors);

@@ -114,6 +114,9 @@ typedef struct dem_sim_stats {
   size_t wall_contacts;   /* particle-wall contacts at the last force evaluation */
   size_t spills;          /* contacts whose reaction crossed a thread's range (last step) */
   double max_overlap_frac;/* largest alpha / min(r_i, r_j) of the last force evaluation */
+  double peak_overlap_frac;/* the largest max_overlap_frac of every force evaluation since
+                              the simulation was created or restored (not checkpointed:
+                              a restored simulation starts it again) */
   double kinetic_energy;  /* J, translational + rotational, at the end of the last run */
   double loop_seconds;    /* wall-clock seconds spent inside dem_sim_run */
   size_t bytes;           /* bytes allocated by the engine (particles, lists, histories) */
@@ -193,6 +196,9 @@ int dem_sim_wall_load_rate_independent(const dem_sim *s, int wall, double f[3]);
 int dem_sim_run(dem_sim *s, long nsteps, dem_err *err);
 
 void dem_sim_get_stats(const dem_sim *s, dem_sim_stats *st);
+/* Start peak_overlap_frac again from the last force evaluation's max_overlap_frac (e.g.
+ * between the phases of a scene, to read the peak of one phase). */
+void dem_sim_reset_peak_overlap(dem_sim *s);
 /* Kinetic energy now (J): translational + rotational. */
 double dem_sim_kinetic_energy(const dem_sim *s);
 

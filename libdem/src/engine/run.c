@@ -26,6 +26,9 @@
  * and 10.)
  */
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #ifdef _OPENMP
@@ -182,6 +185,7 @@ static void collect(dem_sim *s, int add_work) {
   s->st.wall_contacts = wc;
   s->st.spills = sp;
   s->st.max_overlap_frac = mo;
+  if (mo > s->st.peak_overlap_frac) s->st.peak_overlap_frac = mo;
   dem_engine_servo(s);
 }
 
@@ -226,11 +230,70 @@ static double wall_work(const dem_sim *s) {
   return w;
 }
 
+void dem_sim_reset_peak_overlap(dem_sim *s) { s->st.peak_overlap_frac = s->st.max_overlap_frac; }
+
+static const char *const wall_kind_name[] = {"plane", "die", "disc", "sphere",
+                                              "flat cylinder", "box"};
+
+/* The runaway message names the contact: which bodies, their radii, where, how hard they
+ * were pressed and how fast they approached, so that a user can tell an unstable step (any
+ * contact, growing geometrically) from an impact too fast for the stiffness (the overlap a
+ * pair hit at v reaches is about v sqrt(m* / k)) or a particle squeezed against a wall. The
+ * hot loops keep only the largest fraction; the contact is found here, once, by the
+ * read-only contact export (contacts.c: about one single-threaded force evaluation). If
+ * the export fails (out of memory) the message is the short one. */
 static int overlap_error(dem_sim *s, dem_err *err) {
+  char who[360] = "";
+  dem_sim_contact *buf = NULL;
+  size_t cap = 0, n = 0, best = SIZE_MAX, above = 0;
+  if (dem_sim_contacts(s, &buf, &cap, &n, NULL) == DEM_OK) {
+    const double *rad = s->p.radius;
+    double bf = -1.0;
+    for (size_t k = 0; k < n; k++) {
+      const dem_sim_contact *c = buf + k;
+      double rm = rad[c->i];
+      if (c->wall < 0 && rad[c->j] < rm) rm = rad[c->j];
+      const double fr = c->alpha / rm;
+      if (fr > s->bd.max_overlap_frac) above++;
+      if (fr > bf) {
+        bf = fr;
+        best = k;
+      }
+    }
+  }
+  if (best != SIZE_MAX) {
+    const dem_sim_contact *c = buf + best;
+    const dem_particles *p = &s->p;
+    const double *x = p->x + 3 * c->i, *vi = p->v + 3 * c->i;
+    double vo[3] = {0.0, 0.0, 0.0}, vn = 0.0;
+    char other[128];
+    if (c->wall < 0) {
+      for (int a = 0; a < 3; a++) vo[a] = p->v[3 * c->j + a];
+      snprintf(other, sizeof other, "particle %u (r = %.3g m)", (unsigned)p->id[c->j],
+               p->radius[c->j]);
+    } else {
+      const dem_wall *w = &s->wall[c->wall];
+      for (int a = 0; a < 3; a++) vo[a] = w->have_v_eval ? w->v_eval[a] : w->spec.v[a];
+      snprintf(other, sizeof other, "wall %d (%s)", c->wall,
+               (unsigned)w->spec.kind < sizeof wall_kind_name / sizeof *wall_kind_name
+                   ? wall_kind_name[w->spec.kind]
+                   : "?");
+    }
+    /* n points from the other body towards i: approaching means (v_i - v_o) . n < 0 */
+    for (int a = 0; a < 3; a++) vn -= (vi[a] - vo[a]) * c->n[a];
+    snprintf(who, sizeof who,
+             " between particle %u (r = %.3g m, at (%.4g, %.4g, %.4g) m) and %s: normal "
+             "force %.3g N, approach speed %.3g m/s; %zu contact%s above the limit",
+             (unsigned)p->id[c->i], p->radius[c->i], x[0], x[1], x[2], other, c->fn, vn,
+             above, above == 1 ? "" : "s");
+  }
+  free(buf);
   return dem_err_set(err, DEM_ERUNAWAY,
                      "step %ld (t = %g s): an overlap reached %.3g of the smaller radius "
-                     "(allowed %.3g); the time step is too large or the stiffness too low",
-                     s->st.steps, s->st.time, s->st.max_overlap_frac, s->bd.max_overlap_frac);
+                     "(allowed %.3g)%s; the time step is too large or the stiffness too low "
+                     "for the load or the speed",
+                     s->st.steps, s->st.time, s->st.max_overlap_frac, s->bd.max_overlap_frac,
+                     who);
 }
 
 /* Why a run stopped inside the parallel loop. */
