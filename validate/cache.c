@@ -102,7 +102,7 @@ int vh_cache_load(const vh *h, const char *path, const char *bed_path, vh_run *r
     else if (!strcmp(key, "dt")) r->dt = strtod(val, NULL);
     else if (!strcmp(key, "surface")) r->surface = strtod(val, NULL);
     else if (!strcmp(key, "surface_sd")) r->surface_sd = strtod(val, NULL);
-    else if (!strcmp(key, "max_overlap")) r->max_overlap = strtod(val, NULL);
+    else if (!strcmp(key, "peak_overlap")) r->peak_overlap = strtod(val, NULL);
     else if (!strcmp(key, "base_p0")) r->base_p0 = strtod(val, NULL);
     else if (!strcmp(key, "have_stress")) have_stress = atoi(val);
     else if (!strcmp(key, "samples")) n = strtol(val, NULL, 10);
@@ -151,9 +151,9 @@ int vh_cache_save(const vh *h, const char *path, const char *bed_path, const vh_
           vh_code_id(), stamp, r->label, r->status);
   if (r->error[0]) fprintf(f, "# error %s\n", r->error);
   fprintf(f, "# wall_s %.17g\n# threads %d\n# steps %ld\n# dt %.17g\n# surface %.17g\n"
-          "# surface_sd %.17g\n# max_overlap %.17g\n# base_p0 %.17g\n# have_stress %d\n"
+          "# surface_sd %.17g\n# peak_overlap %.17g\n# base_p0 %.17g\n# have_stress %d\n"
           "# samples %zu\n", r->wall_s, h->threads, r->steps, r->dt, r->surface,
-          r->surface_sd, r->max_overlap, r->base_p0, r->have_stress, r->n);
+          r->surface_sd, r->peak_overlap, r->base_p0, r->have_stress, r->n);
   fprintf(f, "# columns h/r H[Pa] bin_p[Pa] bin_q[Pa] bin_phi base_p[Pa] F[N]\n");
   for (size_t i = 0; i < r->n; i++)
     fprintf(f, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", r->hr[i], r->H[i], r->bin_p[i],

@@ -425,11 +425,12 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
       if (r->plots[k][0]) d_img(&d, r->plots[k], r->plots[k]);
     d_table_begin(&d);
     const char *rh[] = {"run", "H [kPa]", "sd(H) [kPa]", "bin p [kPa]", "bin q [kPa]",
-                        "bin phi", "surface sd [d]", "steps", "wall [s]", "status"};
-    d_row(&d, 1, 10, rh);
+                        "bin phi", "surface sd [d]", "peak overlap [r]", "steps",
+                        "wall [s]", "status"};
+    d_row(&d, 1, 11, rh);
     for (int k = 0; k < r->nruns; k++) {
       const vh_run *u = &h->runs[r->runs[k]];
-      char c[10][96];
+      char c[11][96];
       snprintf(c[0], 96, "%s", r->labels[k]);
       const dem_series_stats sH = run_stats_of(u, &u->sH), sp = run_stats_of(u, &u->sp),
                              sq = run_stats_of(u, &u->sq), sphi = run_stats_of(u, &u->sphi);
@@ -440,12 +441,14 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
       fmt_stats(c[4], 96, &sq, 1e-3);
       fmt_stats(c[5], 96, &sphi, 1.0);
       snprintf(c[6], 96, "%.2f", u->surface_sd / 1e-3);
-      snprintf(c[7], 96, "%ld", u->steps);
-      snprintf(c[8], 96, "%.0f%s", u->wall_s, u->cached ? " (cached)" : "");
-      snprintf(c[9], 96, "%.95s", u->status ? u->error : "ok");
-      const char *cells[10];
-      for (int j = 0; j < 10; j++) cells[j] = c[j];
-      d_row(&d, 0, 10, cells);
+      if (u->skipped) snprintf(c[7], 96, "-");
+      else snprintf(c[7], 96, "%.3f", u->peak_overlap);
+      snprintf(c[8], 96, "%ld", u->steps);
+      snprintf(c[9], 96, "%.0f%s", u->wall_s, u->cached ? " (cached)" : "");
+      snprintf(c[10], 96, "%.95s", u->status ? u->error : "ok");
+      const char *cells[11];
+      for (int j = 0; j < 11; j++) cells[j] = c[j];
+      d_row(&d, 0, 11, cells);
     }
     d_table_end(&d);
   }
@@ -461,8 +464,8 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
                             "scale, gamma*, time-step factor, die (docs/study/, 2026-12-02, "
                             "beds at rest)"},
         {"study_stability.png", "stability map: where stiffness scale, time-step factor and "
-                                "rate break the answer (docs/study/, 2026-12-02, beds at "
-                                "rest)"}};
+                                "rate break the answer (docs/study/, 2026-12-05, current "
+                                "beds, peak overlap of every step)"}};
     for (int i = 0; i < 2; i++) {
       char src[700];
       snprintf(src, sizeof src, "%s/docs/study/%s", VH_SOURCE_DIR, fig[i][0]);
@@ -566,6 +569,7 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
       json_object_set_new(j, "cached", json_boolean(u->cached));
       json_object_set_new(j, "skipped", json_boolean(u->skipped));
       json_object_set_new(j, "threads", json_integer(u->threads));
+      json_object_set_new(j, "peak_overlap_frac", u->skipped ? json_null() : jnum(u->peak_overlap));
       json_array_append_new(runs, j);
     }
     json_object_set_new(c, "checks", checks);

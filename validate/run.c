@@ -470,7 +470,7 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
     dem_sim_stats st;
     dem_sim_get_stats(s, &st);
     r->steps = st.steps - st0.steps;
-    r->max_overlap = st.max_overlap_frac;
+    r->peak_overlap = st.peak_overlap_frac;
     dem_scene_info in;
     dem_scene_get_info(sc, &in);
     r->dt = in.dt;
@@ -479,7 +479,7 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   dem_scene_free(sc);
   r->wall_s = vh_now() - t0;
   r->status = rc;
-  if (rc) snprintf(r->error, sizeof r->error, "%.40s: %.270s", dem_strerror(rc), err->msg);
+  if (rc) snprintf(r->error, sizeof r->error, "%.40s: %.590s", dem_strerror(rc), err->msg);
   /* Kept for later invocations: a finished run, or one the engine's own checks stopped (the
    * same code stops it again at the same step); not an interruption or a resource error. */
   if (cpath[0] && (rc == DEM_OK || rc == DEM_ERUNAWAY || rc == DEM_EUNSTABLE ||

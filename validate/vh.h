@@ -101,7 +101,7 @@ typedef struct vh_run {
   int bed;             /* index into the harness' beds */
   vh_indent ind;
   int status;          /* DEM_OK or the error */
-  char error[320];
+  char error[640];
   int cached;          /* 1: loaded from the run cache (cache.c), not run by this invocation */
   int skipped;         /* 1: not made, over the --budget (dist.c): its criteria are N/A */
   int threads;         /* OpenMP threads of the run that made it */
@@ -110,7 +110,8 @@ typedef struct vh_run {
   double dt;           /* s */
   double surface;      /* m, bed surface under the footprint (dem_bed_surface) */
   double surface_sd;   /* m, roughness of the footprint */
-  double max_overlap;  /* largest overlap / radius seen at the samples */
+  double peak_overlap; /* the largest overlap / smaller radius of any contact at any step
+                          of the run (dem_sim_stats.peak_overlap_frac) */
   size_t n;
   double *hr, *H, *bin_p, *bin_q, *bin_phi, *base_p, *F; /* [n] */
   double base_p0;      /* Pa, base stress at the first contact */

@@ -395,10 +395,16 @@ int main(int argc, char **argv) {
   if (!wr) wr = dem_table_write(dem_scene_series(sc), path, &e2);
   dem_scene_info in;
   dem_scene_get_info(sc, &in);
-  if (!rc)
+  if (!rc) {
+    /* the peak overlap covers this invocation (since creation or --restart): for a
+     * restarted indentation, the bed's own overlaps and the indentation's */
+    dem_sim_stats st;
+    dem_sim_get_stats(dem_scene_sim(sc), &st);
     printf("particles %zu, dt %.3g s, bed after unloading %.4g m (phi %.3f), surface %.4g m, "
-           "depth %.4g m, indenter force %.4g N\n",
-           in.n, in.dt, in.bed_top, in.phi, in.surface, in.depth, in.indenter_force);
+           "depth %.4g m, indenter force %.4g N, peak overlap %.4f of the smaller radius\n",
+           in.n, in.dt, in.bed_top, in.phi, in.surface, in.depth, in.indenter_force,
+           st.peak_overlap_frac);
+  }
   dem_scene_free(sc);
   free(o.times);
   free(o.n);
