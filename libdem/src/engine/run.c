@@ -236,9 +236,11 @@ static const char *const wall_kind_name[] = {"plane", "die", "disc", "sphere",
                                               "flat cylinder", "box"};
 
 /* The runaway message names the contact: which bodies, their radii, where, how hard they
- * were pressed and how fast they approached, so that a user can tell an unstable step (any
- * contact, growing geometrically) from an impact too fast for the stiffness (the overlap a
- * pair hit at v reaches is about v sqrt(m* / k)) or a particle squeezed against a wall. The
+ * were pressed and how fast they approached, so that a user can tell an unstable step (many
+ * contacts, growing geometrically) from a contact driven too fast for its stiffness (an
+ * indenter driving the bed at v loads the contacts under it with ~v sqrt(m k), overlap
+ * ~v sqrt(m / k): docs/validation.md "What stops the high-rate runs") or a particle squeezed
+ * against a wall. The
  * hot loops keep only the largest fraction; the contact is found here, once, by the
  * read-only contact export (contacts.c: about one single-threaded force evaluation). If
  * the export fails (out of memory) the message is the short one. */
