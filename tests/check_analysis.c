@@ -947,6 +947,96 @@ START_TEST(test_strain_rate) {
 }
 END_TEST
 
+/* H = H0 + beta rho_b v^2 exactly: the fit returns H0 and beta to rounding, chi2 = 0. */
+START_TEST(test_rate_fit_exact) {
+  const double v[] = {0.03, 0.1, 0.3, 0.6, 1.2}, se[] = {100, 150, 200, 400, 2000};
+  const double rho_b = 1500.0, H0 = 4500.0, beta = 5.0;
+  double H[5];
+  for (int i = 0; i < 5; i++) H[i] = H0 + beta * rho_b * v[i] * v[i];
+  dem_rate_fit f;
+  dem_err e = {0};
+  ck_assert_int_eq(dem_rate_fit_dynamic(5, v, H, se, rho_b, &f, &e), DEM_OK);
+  RELTOL(f.H0, H0, 1e-12);
+  RELTOL(f.beta, beta, 1e-12);
+  ck_assert(f.chi2 < 1e-18);
+  ck_assert_int_eq(f.dof, 3);
+  ck_assert_double_eq(f.scale, 1.0);
+  RELTOL(f.p, 1.0, 1e-12);
+  /* the onset speed: beta rho_b v^2 = 0.1 H0 */
+  RELTOL(dem_rate_onset_speed(&f, rho_b, 0.1, NULL), sqrt(0.1 * H0 / (beta * rho_b)), 1e-12);
+  dem_rate_fit g = f;
+  g.beta = -1.0;
+  double se_on = 0.0;
+  ck_assert(isnan(dem_rate_onset_speed(&g, rho_b, 0.1, &se_on)));
+  ck_assert(isnan(se_on));
+  ck_assert(isnan(dem_rate_onset_speed(&f, 0.0, 0.1, NULL)));
+}
+END_TEST
+
+/* Three runs of equal error s at x = rho_b v^2 = 0, X, 2X, off the line a + b x by
+ * eps (1, -2, 1) (orthogonal to 1 and x): the fit is a, b; chi2 = 6 eps^2 / s^2 on 1 dof;
+ * var(b) = s^2 / (2 X^2), var(a) = 5 s^2 / 6; P(chi^2_1 >= c) = erfc(sqrt(c / 2)). With
+ * chi2 > dof the errors are scaled by sqrt(chi2). */
+START_TEST(test_rate_fit_errors) {
+  const double rho_b = 1200.0, X = 3000.0, a = 4000.0, b = 4.0, s = 250.0;
+  const double v[] = {0.0, sqrt(X / rho_b), sqrt(2.0 * X / rho_b)}, se[] = {s, s, s};
+  const double pattern[] = {1.0, -2.0, 1.0}, x[] = {0.0, X, 2.0 * X};
+  for (int k = 0; k < 2; k++) {
+    double eps = k == 0 ? 0.2 * s : s; /* chi2 0.24 (no scaling), then 6 (scale sqrt 6) */
+    double H[3];
+    for (int i = 0; i < 3; i++) H[i] = a + b * x[i] + eps * pattern[i];
+    dem_rate_fit f;
+    dem_err e = {0};
+    ck_assert_int_eq(dem_rate_fit_dynamic(3, v, H, se, rho_b, &f, &e), DEM_OK);
+    RELTOL(f.H0, a, 1e-12);
+    RELTOL(f.beta, b, 1e-10);
+    double chi2 = 6.0 * eps * eps / (s * s);
+    RELTOL(f.chi2, chi2, 1e-9);
+    ck_assert_int_eq(f.dof, 1);
+    RELTOL(f.p, erfc(sqrt(chi2 / 2.0)), 1e-9);
+    double scale = chi2 > 1.0 ? sqrt(chi2) : 1.0;
+    RELTOL(f.scale, scale, 1e-9);
+    RELTOL(f.beta_se, scale * s / (sqrt(2.0) * X), 1e-9);
+    RELTOL(f.H0_se, scale * s * sqrt(5.0 / 6.0), 1e-9);
+    /* cov(a, b) = -s^2 xbar / sum (x - xbar)^2 = -s^2 / (2 X) */
+    RELTOL(f.cov, -scale * scale * s * s / (2.0 * X), 1e-9);
+    double se_on, von = dem_rate_onset_speed(&f, rho_b, 0.1, &se_on);
+    RELTOL(von, sqrt(0.1 * a / (b * rho_b)), 1e-10);
+    double ra = f.H0_se / a, rb = f.beta_se / b, rc = f.cov / (a * b);
+    RELTOL(se_on, 0.5 * von * sqrt(ra * ra + rb * rb - 2.0 * rc), 1e-9);
+  }
+  /* two runs: an exact line, no goodness of fit */
+  double H2[] = {a, a + b * X};
+  dem_rate_fit f;
+  dem_err e = {0};
+  ck_assert_int_eq(dem_rate_fit_dynamic(2, v, H2, se, rho_b, &f, &e), DEM_OK);
+  ck_assert_int_eq(f.dof, 0);
+  ck_assert(isnan(f.p));
+  RELTOL(f.beta_se, sqrt(2.0) * s / X, 1e-9);
+}
+END_TEST
+
+START_TEST(test_rate_fit_bad_input) {
+  const double v[] = {0.1, 0.5, 1.0}, H[] = {4e3, 5e3, 9e3}, se[] = {100, 100, 100};
+  dem_rate_fit f;
+  dem_err e = {0};
+  ck_assert_int_eq(dem_rate_fit_dynamic(1, v, H, se, 1500, &f, &e), DEM_ERANGE);
+  ck_assert(strstr(e.msg, "n = 1") != NULL);
+  ck_assert_int_eq(dem_rate_fit_dynamic(3, v, H, se, 0.0, &f, &e), DEM_ERANGE);
+  ck_assert(strstr(e.msg, "rho_b") != NULL);
+  const double se0[] = {100, 0, 100}, Hn[] = {4e3, NAN, 9e3}, vn[] = {0.1, -0.5, 1.0},
+               vs[] = {0.5, 0.5, 0.5};
+  ck_assert_int_eq(dem_rate_fit_dynamic(3, v, H, se0, 1500, &f, &e), DEM_ERANGE);
+  ck_assert(strstr(e.msg, "run 1: se = 0") != NULL);
+  ck_assert_int_eq(dem_rate_fit_dynamic(3, v, Hn, se, 1500, &f, &e), DEM_ENONFINITE);
+  ck_assert(strstr(e.msg, "run 1") != NULL);
+  ck_assert_int_eq(dem_rate_fit_dynamic(3, vn, H, se, 1500, &f, &e), DEM_ERANGE);
+  ck_assert(strstr(e.msg, "v = -0.5 m/s") != NULL);
+  ck_assert_int_eq(dem_rate_fit_dynamic(3, vs, H, se, 1500, &f, &e), DEM_ERANGE);
+  ck_assert(strstr(e.msg, "two distinct speeds") != NULL);
+}
+END_TEST
+
 static Suite *suite(void) {
   Suite *s = suite_create("analysis");
   TCase *tc = tcase_create("analysis");
@@ -968,6 +1058,9 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_solids_fraction);
   tcase_add_test(tc, test_bins);
   tcase_add_test(tc, test_strain_rate);
+  tcase_add_test(tc, test_rate_fit_exact);
+  tcase_add_test(tc, test_rate_fit_errors);
+  tcase_add_test(tc, test_rate_fit_bad_input);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -197,6 +197,38 @@ int vh_plot_trend(const vh *h, const char *png, const char *title, const char *x
   return gnuplot(h, s, err);
 }
 
+/* Case 10's dynamic-pressure reading (cases.c rate_fit): H with its standard error against
+ * rho_b v^2, and the fitted line H0 + beta rho_b v^2. */
+static int plot_rate_fit(const vh *h, const vh_case_result *r, const char *png, dem_err *err) {
+  char dat[64], tmp[800];
+  snprintf(dat, sizeof dat, "%.40s.dat", png);
+  FILE *f = open_tmp(h->out, dat, tmp, sizeof tmp);
+  if (!f) return dem_err_set(err, DEM_EIO, "dem-validate: cannot write %s", dat);
+  fprintf(f, "# gamma*  v[m/s]  rho_b_v2[Pa]  H_mean[Pa]  H_se[Pa]  H_sd[Pa]  (rho_b = %.6g "
+             "kg/m^3)\n", r->rho_b);
+  for (int i = 0; i < r->nruns; i++) {
+    const vh_run *u = &h->runs[r->runs[i]];
+    if (u->status || !isfinite(u->v) || !isfinite(u->sH.mean)) continue;
+    fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g\n", r->x[i], u->v, r->rho_b * u->v * u->v,
+            u->sH.mean, u->sH.se, u->sH.sd);
+  }
+  int rc = close_rename(f, tmp, h->out, dat, err);
+  if (rc) return rc;
+  const dem_rate_fit *q = &r->rate_fit;
+  char s[2048];
+  snprintf(s, sizeof s,
+           HEAD "set output '%s'\nset title \"%s: H against the dynamic pressure\"\n"
+                "set xlabel 'rho_b v^2 [kPa] (rho_b = %.0f kg/m^3)'\nset ylabel 'H [kPa]'\n"
+                "set logscale x\nset offsets graph 0.05, graph 0.05, 0, 0\n"
+                "f(x) = %.9g + %.9g * x\n"
+                "plot '%s' u ($3/1000):($4/1000):($5/1000) w yerrorbars pt 7 lw 2 "
+                "t 'plateau H (bars: standard error)', "
+                "'' u ($3/1000):($4/1000):(sprintf('%%g', $1)) w labels offset 1.5,1 notitle, "
+                "f(x) w l lw 1.5 t 'fit: H0 %.2f kPa + %.2f rho_b v^2'\n",
+           png, r->title, r->rho_b, q->H0 / 1e3, q->beta, dat, q->H0 / 1e3, q->beta);
+  return gnuplot(h, s, err);
+}
+
 static void case_plots(vh *h, vh_case_result *r, int plots, dem_err *err) {
   if (!plots || r->nruns == 0) return;
   const char *labels[VH_MAX_CASE_RUNS];
@@ -238,6 +270,10 @@ static void case_plots(vh *h, vh_case_result *r, int plots, dem_err *err) {
     snprintf(title, sizeof title, "%s: plateau means", r->title);
     if (!vh_plot_trend(h, png, title, r->xlabel, r->x, r->runs, r->nruns, r->logx, err))
       snprintf(r->plots[k++], 96, "%s", png);
+  }
+  if (r->has_rate_fit && k < 4) {
+    snprintf(png, sizeof png, "%s_dynamic.png", r->name);
+    if (!plot_rate_fit(h, r, png, err)) snprintf(r->plots[k++], 96, "%s", png);
   }
   /* a figure that could not be made is said, not silently left out of the report */
   if (err->code) vh_log(h, "warning: case %s: %s (a figure is missing from the report)",
@@ -421,34 +457,50 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
                "s; the same beds and runs took %.0f s when they were made (cached ones "
                "included).%s%s", r->name, r->source, r->wall_s, r->cost_s,
            r->note[0] ? " " : "", r->note);
+    if (r->has_rate_fit) {
+      const dem_rate_fit *q = &r->rate_fit;
+      char pv[48] = "";
+      if (q->dof > 0) snprintf(pv, sizeof pv, ", p %.2g", q->p);
+      d_para(&d, "Reading of the rise (not a criterion): the weighted fit H = H0 + beta rho_b "
+                 "v^2 over the %d rates that ran (v the indenter speed, rho_b = %.0f kg/m^3 the "
+                 "particle density times the bed's solids fraction; docs/analysis.md, \"Rate "
+                 "dependence\") gives H0 = %.2f +- %.2f kPa and beta = %.2f +- %.2f (chi2 %.2g "
+                 "on %d dof%s%s). The dynamic part reaches 10 %% of H0 at v = %.3g +- %.2g m/s, "
+                 "gamma* %.2g +- %.2g on this bed (the thesis: H flat up to gamma* ~ 1).",
+             q->dof + 2, r->rho_b, q->H0 / 1e3, q->H0_se / 1e3, q->beta, q->beta_se, q->chi2,
+             q->dof, pv, q->scale > 1.0 ? "; errors scaled by sqrt(chi2/dof)" : "",
+             r->onset_v, r->onset_v_se, r->onset_gamma_star, r->onset_gamma_star_se);
+    }
     for (int k = 0; k < 4; k++)
       if (r->plots[k][0]) d_img(&d, r->plots[k], r->plots[k]);
     d_table_begin(&d);
-    const char *rh[] = {"run", "H [kPa]", "sd(H) [kPa]", "bin p [kPa]", "bin q [kPa]",
-                        "bin phi", "surface sd [d]", "peak overlap [r]", "steps",
-                        "wall [s]", "status"};
-    d_row(&d, 1, 11, rh);
+    const char *rh[] = {"run", "v [m/s]", "H [kPa]", "sd(H) [kPa]", "bin p [kPa]",
+                        "bin q [kPa]", "bin phi", "surface sd [d]", "peak overlap [r]",
+                        "steps", "wall [s]", "status"};
+    d_row(&d, 1, 12, rh);
     for (int k = 0; k < r->nruns; k++) {
       const vh_run *u = &h->runs[r->runs[k]];
-      char c[11][96];
+      char c[12][96];
       snprintf(c[0], 96, "%s", r->labels[k]);
+      if (isfinite(u->v)) snprintf(c[1], 96, "%.3g", u->v);
+      else snprintf(c[1], 96, "-");
       const dem_series_stats sH = run_stats_of(u, &u->sH), sp = run_stats_of(u, &u->sp),
                              sq = run_stats_of(u, &u->sq), sphi = run_stats_of(u, &u->sphi);
-      fmt_stats(c[1], 96, &sH, 1e-3);
-      if (isfinite(sH.sd)) snprintf(c[2], 96, "%.3g", sH.sd / 1e3);
-      else snprintf(c[2], 96, "-");
-      fmt_stats(c[3], 96, &sp, 1e-3);
-      fmt_stats(c[4], 96, &sq, 1e-3);
-      fmt_stats(c[5], 96, &sphi, 1.0);
-      snprintf(c[6], 96, "%.2f", u->surface_sd / 1e-3);
-      if (u->skipped) snprintf(c[7], 96, "-");
-      else snprintf(c[7], 96, "%.3f", u->peak_overlap);
-      snprintf(c[8], 96, "%ld", u->steps);
-      snprintf(c[9], 96, "%.0f%s", u->wall_s, u->cached ? " (cached)" : "");
-      snprintf(c[10], 96, "%.95s", u->status ? u->error : "ok");
-      const char *cells[11];
-      for (int j = 0; j < 11; j++) cells[j] = c[j];
-      d_row(&d, 0, 11, cells);
+      fmt_stats(c[2], 96, &sH, 1e-3);
+      if (isfinite(sH.sd)) snprintf(c[3], 96, "%.3g", sH.sd / 1e3);
+      else snprintf(c[3], 96, "-");
+      fmt_stats(c[4], 96, &sp, 1e-3);
+      fmt_stats(c[5], 96, &sq, 1e-3);
+      fmt_stats(c[6], 96, &sphi, 1.0);
+      snprintf(c[7], 96, "%.2f", u->surface_sd / 1e-3);
+      if (u->skipped) snprintf(c[8], 96, "-");
+      else snprintf(c[8], 96, "%.3f", u->peak_overlap);
+      snprintf(c[9], 96, "%ld", u->steps);
+      snprintf(c[10], 96, "%.0f%s", u->wall_s, u->cached ? " (cached)" : "");
+      snprintf(c[11], 96, "%.95s", u->status ? u->error : "ok");
+      const char *cells[12];
+      for (int j = 0; j < 12; j++) cells[j] = c[j];
+      d_row(&d, 0, 12, cells);
     }
     d_table_end(&d);
   }
@@ -570,10 +622,26 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
       json_object_set_new(j, "skipped", json_boolean(u->skipped));
       json_object_set_new(j, "threads", json_integer(u->threads));
       json_object_set_new(j, "peak_overlap_frac", u->skipped ? json_null() : jnum(u->peak_overlap));
+      json_object_set_new(j, "speed_m_s", jnum(u->v));
       json_array_append_new(runs, j);
     }
     json_object_set_new(c, "checks", checks);
     json_object_set_new(c, "runs", runs);
+    if (r->has_rate_fit) {
+      const dem_rate_fit *q = &r->rate_fit;
+      json_t *fit = json_pack("{s:o,s:o,s:o,s:o,s:o,s:o,s:o,s:i,s:o,s:o,s:f,s:o,s:o,s:o,s:o}",
+                              "rho_b", jnum(r->rho_b), "H0", jnum(q->H0), "H0_se",
+                              jnum(q->H0_se), "beta", jnum(q->beta), "beta_se",
+                              jnum(q->beta_se), "cov", jnum(q->cov), "chi2", jnum(q->chi2),
+                              "dof", q->dof, "p", jnum(q->p), "scale", jnum(q->scale),
+                              "onset_fraction", 0.1, "onset_speed_m_s", jnum(r->onset_v),
+                              "onset_speed_se", jnum(r->onset_v_se), "onset_gamma_star",
+                              jnum(r->onset_gamma_star), "onset_gamma_star_se",
+                              jnum(r->onset_gamma_star_se));
+      json_object_set_new(c, "rate_fit", fit);
+    } else {
+      json_object_set_new(c, "rate_fit", json_null());
+    }
     json_array_append_new(cases, c);
   }
   json_object_set_new(root, "beds", beds);

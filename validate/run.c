@@ -20,9 +20,6 @@
 #include "dem/table.h"
 #include "vh.h"
 
-#define G_ACC 9.81   /* m/s^2 */
-#define D_MEAN 1e-3  /* m, thesis mean diameter */
-
 /* The tiers (geometry in d; docs/validation.md gives the reasons).
  * quick:  thesis geometry scaled by ~0.6 (die 20 d, bed 12 d, sphere 8 d: indenter/die 0.4
  *         as the thesis' 16/45; bed heights 8 and 12 d under an 8 d ball keep the ratios
@@ -199,6 +196,7 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err) {
   snprintf(b->path, sizeof b->path, "%.300s/%.200s.h5", h->beds_dir, name);
   dem_scene_config c;
   if (bed_config(h, b, &c, err)) return -1;
+  b->rho = c.rho;
   if (h->plan) { /* listed, not prepared (dist.c) */
     b->prep_s = NAN;
     return h->nbeds++;
@@ -380,6 +378,7 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
   r->bed = bi;
   r->ind = *ind;
   r->cases = case_bit(h);
+  r->v = b->ready ? rate_of(ind->gamma_star) * b->bed_top : NAN;
   snprintf(r->label, sizeof r->label, "bed %g d, %s %g d, gamma* %g, kn x%g, mu_i %g, dt x%g",
            b->bed, shape_name(ind->shape), ind->D, ind->gamma_star, ind->kn_scale, ind->mu_ind,
            ind->dt_scale);
@@ -439,7 +438,7 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
       return -1;
   }
   /* one sample every 0.0025 h/r: the same resolution for every rate and size */
-  double v = o.indent_rate * b->bed_top;
+  double v = r->v; /* = o.indent_rate x bed top */
   o.sample_interval = 0.0025 * 0.5 * ind->D * D_MEAN / v;
   h->nruns++;
   vh_log(h, "run %d: %s", h->nruns - 1, r->label);

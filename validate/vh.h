@@ -22,6 +22,9 @@
 #include "dem/error.h"
 #include "dem/scene.h"
 
+#define G_ACC 9.81   /* m/s^2 */
+#define D_MEAN 1e-3  /* m, thesis mean diameter */
+
 #define VH_MAX_RUNS 96
 #define VH_MAX_BEDS 24
 #define VH_MAX_CHECKS 8
@@ -82,6 +85,7 @@ typedef struct vh_bed {
   size_t n;            /* particles */
   double phi, bed_top; /* -, m after unloading */
   double dt;           /* s */
+  double rho;          /* kg/m^3, particle density of the bed's materials */
   unsigned cases;      /* plan: bit k set if the k-th selected case needs the bed (dist.c) */
 } vh_bed;
 
@@ -105,6 +109,8 @@ typedef struct vh_run {
   int cached;          /* 1: loaded from the run cache (cache.c), not run by this invocation */
   int skipped;         /* 1: not made, over the --budget (dist.c): its criteria are N/A */
   int threads;         /* OpenMP threads of the run that made it */
+  double v;            /* m/s, indenter speed: gamma_dot(gamma*) x the bed top (docs/scene.md;
+                          NaN for a bed not prepared) */
   double wall_s;       /* s, wall time of the run (when it was made) */
   long steps;
   double dt;           /* s */
@@ -152,6 +158,13 @@ typedef struct vh_case_result {
   int logx;
   char plots[4][96];     /* PNG files written for this case ("" if none) */
   char note[400];
+  /* case 10 only, not a criterion: H = H0 + beta rho_b v^2 over its rates
+   * (dem_rate_fit_dynamic); has_rate_fit 0 if fewer than 3 rates ran */
+  int has_rate_fit;
+  dem_rate_fit rate_fit;
+  double rho_b;          /* kg/m^3, particle density x the bed's solids fraction */
+  double onset_v, onset_v_se; /* m/s, where beta rho_b v^2 = 0.1 H0 (dem_rate_onset_speed) */
+  double onset_gamma_star, onset_gamma_star_se; /* the same as gamma* on that bed */
 } vh_case_result;
 
 typedef struct vh {

@@ -305,4 +305,42 @@ double dem_gamma_star(double gamma_dot, double d, double g);
  * (docs/analysis.md). NaN if h_bed <= 0. */
 double dem_indent_strain_rate(double v, double h_bed);
 
+/* ---- rate dependence of the hardness: the dynamic-pressure fit ------------------------- */
+
+/* H(v) = H0 + beta rho_b v^2 (docs/analysis.md, "Rate dependence"): the hardness measured at
+ * indenter speed v (m/s) as a quasi-static part H0 (Pa) plus beta times the bed's dynamic
+ * pressure rho_b v^2 (Pa), rho_b = particle density x solids fraction (kg/m^3). The
+ * momentum the indenter gives the material ahead of it each second, per unit projected
+ * area, is of order rho_b v^2 (the inertial "Poncelet" term of granular impact drag), so
+ * beta is a dimensionless drag coefficient.
+ *
+ * Weighted least squares of H_i against x_i = rho_b v_i^2 with weights 1 / se_i^2
+ * (gsl_fit_wlinear), se_i the standard error of H_i. chi2 = sum ((H_i - H0 - beta x_i) /
+ * se_i)^2 with dof = n - 2; p = P(chi^2_dof >= chi2) (NaN if dof = 0). The standard errors
+ * are those of the weights, scaled by `scale` = sqrt(chi2 / dof) when that exceeds 1 (the
+ * points scatter more than their own errors allow: the Particle Data Group's scale
+ * factor), else scale = 1. */
+typedef struct dem_rate_fit {
+  double H0, H0_se;     /* Pa */
+  double beta, beta_se; /* - */
+  double cov;           /* Pa, covariance of H0 and beta (scaled like the errors) */
+  double chi2;          /* - */
+  int dof;              /* n - 2 */
+  double p;             /* goodness of fit */
+  double scale;         /* >= 1, applied to H0_se and beta_se */
+} dem_rate_fit;
+
+/* n >= 2 runs: speeds v[i] (m/s, >= 0), hardness H[i] (Pa), its standard error se[i] (Pa,
+ * > 0), the bed's rho_b (kg/m^3, > 0). DEM_ERANGE for n < 2, se <= 0, v < 0, rho_b <= 0 or
+ * fewer than two distinct speeds; DEM_ENONFINITE for a NaN or infinite input. */
+int dem_rate_fit_dynamic(size_t n, const double *v, const double *H, const double *se,
+                         double rho_b, dem_rate_fit *out, dem_err *err);
+
+/* The speed (m/s) at which the fitted dynamic part reaches `frac` of the quasi-static
+ * hardness, beta rho_b v^2 = frac H0: v = sqrt(frac H0 / (beta rho_b)). If se != NULL, its
+ * standard error by first-order propagation of H0_se, beta_se and cov:
+ * se / v = (1/2) sqrt((H0_se / H0)^2 + (beta_se / beta)^2 - 2 cov / (H0 beta)).
+ * NaN (and se NaN) unless H0, beta, rho_b and frac are all > 0. */
+double dem_rate_onset_speed(const dem_rate_fit *f, double rho_b, double frac, double *se);
+
 #endif
