@@ -8,17 +8,20 @@
  *     parameter (shape, D, gamma*, kn scale, indenter mu, dt scale, h/r at the end, sampling);
  *   - the bed file: its size and modification time when the run was made (a bed prepared
  *     anew invalidates its runs);
- *   - the code: a 64-bit FNV-1a hash of this executable (libdem is linked statically), so a
- *     rebuilt program runs everything again. Runs are bit-identical for the same code and
- *     thread count; the thread count is recorded, not matched (another count gives the same
- *     physics to rounding).
+ *   - the code: VH_CODE_ID, a hash of every source file a run's numbers depend on (libdem,
+ *     validate/run.c and vh.h, the CMakeLists that set the options), the compiler and its
+ *     version, the build type and flags, and the GSL and HDF5 versions
+ *     (validate/code_id.cmake). A change to the report, the criteria, the plan or the CLI
+ *     keeps the runs; a change to the physics or the run set-up makes them anew. (Until
+ *     2026-12-06 it was a hash of the executable, so every rebuild ran everything again.)
+ *     Runs are bit-identical for the same code and thread count; the thread count is
+ *     recorded, not matched (another count gives the same physics to rounding).
  * Anything else (a missing, truncated or foreign file) is a cache miss, never an error: the
  * run is computed and the file replaced. Files are written to a temporary name and renamed,
  * so an interrupted invocation leaves no half-written entry.
  * Format: text, "# key value" header lines, then one row of %.17g numbers per sample.
  */
 #include <errno.h>
-#include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,26 +30,11 @@
 #include <unistd.h>
 
 #include "vh.h"
+#include "vh_code_id.h" /* VH_CODE_ID, generated at build time by validate/code_id.cmake */
 
 #define CACHE_MAGIC "# dem-validate run cache, format 1"
 
-const char *vh_code_id(void) {
-  static char id[24] = "";
-  if (id[0]) return id;
-  uint64_t hsh = 1469598103934665603ULL; /* FNV-1a 64 offset basis */
-  FILE *f = fopen("/proc/self/exe", "rb");
-  if (f) {
-    unsigned char buf[65536];
-    size_t m;
-    while ((m = fread(buf, 1, sizeof buf, f)) > 0)
-      for (size_t i = 0; i < m; i++) hsh = (hsh ^ buf[i]) * 1099511628211ULL;
-    fclose(f);
-    snprintf(id, sizeof id, "%016" PRIx64, hsh);
-  } else {
-    snprintf(id, sizeof id, "unknown"); /* never matches a file: no run is reused */
-  }
-  return id;
-}
+const char *vh_code_id(void) { return VH_CODE_ID; }
 
 static int bed_stamp(const char *path, char *buf, size_t len) {
   struct stat st;

@@ -227,7 +227,7 @@ int vh_bed_get(vh *h, const vh_bed *spec, dem_err *err);
 int vh_run_get(vh *h, const vh_bed *bed, const vh_indent *ind, dem_err *err);
 
 /* Run cache (cache.c): runs kept across invocations in beds_dir. */
-const char *vh_code_id(void); /* hash of this executable */
+const char *vh_code_id(void); /* hash of what a run depends on (validate/code_id.cmake) */
 void vh_cache_path(const vh *h, const char *bed_name, const vh_indent *in, char *buf,
                    size_t len);
 /* 0 and r filled (series, scalars, status, cached = 1) on a hit; -1 on a miss. */
