@@ -9,7 +9,7 @@
  *   - the bed file: its size and modification time when the run was made (a bed prepared
  *     anew invalidates its runs);
  *   - the code: VH_CODE_ID, a hash of every source file a run's numbers depend on (libdem,
- *     validate/run.c and vh.h, the CMakeLists that set the options), the compiler and its
+ *     validate/run.c and vh_run.h, the CMakeLists that set the options), the compiler and its
  *     version, the build type and flags, and the GSL and HDF5 versions
  *     (validate/code_id.cmake). A change to the report, the criteria, the plan or the CLI
  *     keeps the runs; a change to the physics or the run set-up makes them anew. (Until
@@ -29,7 +29,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "vh.h"
+#include "vh_run.h"
 #include "vh_code_id.h" /* VH_CODE_ID, generated at build time by validate/code_id.cmake */
 
 #define CACHE_MAGIC "# dem-validate run cache, format 1"

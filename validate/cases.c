@@ -20,6 +20,24 @@
 
 #include "vh.h"
 
+const char *vh_status_name(vh_status s) {
+  static const char *n[] = {"PASS", "FAIL", "ERROR", "N/A"};
+  return n[s];
+}
+
+int vh_greater(const vh *h, const dem_series_stats *a, const dem_series_stats *b,
+               dem_comparison *c) {
+  dem_err e = {0};
+  return dem_compare_means(a->mean, a->se, b->mean, b->se, h->level, DEM_TEST_GREATER, c, &e);
+}
+
+int vh_agree(const vh *h, const dem_series_stats *a, const dem_series_stats *b,
+             dem_comparison *c) {
+  dem_err e = {0};
+  return dem_compare_means(a->mean, a->se, b->mean, b->se, h->level, DEM_TEST_TWO_SIDED, c,
+                           &e);
+}
+
 static vh_check *check(vh_case_result *r, const char *what, const char *statistic,
                        const char *thesis) {
   if (r->nchecks == VH_MAX_CHECKS) return &r->checks[VH_MAX_CHECKS - 1];
@@ -822,8 +840,8 @@ static const double rates[] = {0.03, 0.1, 0.23, 0.46, 1.0, 2.3};
 /* Case 10's reading of the rise, not a criterion (the thesis states none): H = H0 + beta
  * rho_b v^2 over the rates that ran (dem_rate_fit_dynamic, docs/analysis.md "Rate
  * dependence"): the quasi-static hardness, the dynamic-pressure coefficient and the speed and
- * gamma* at which the dynamic part reaches 10 % of H0. Needs 3 rates (one degree of freedom
- * left to judge the fit). */
+ * gamma* at which the dynamic part reaches VH_RATE_ONSET_FRACTION of H0. Needs 3 rates (one
+ * degree of freedom left to judge the fit). */
 static void rate_fit(const vh *h, vh_case_result *r, const int *idx, int n) {
   double v[8], H[8], se[8];
   int m = 0, bed = -1;
@@ -843,7 +861,8 @@ static void rate_fit(const vh *h, vh_case_result *r, const int *idx, int n) {
     return;
   }
   r->has_rate_fit = 1;
-  r->onset_v = dem_rate_onset_speed(&r->rate_fit, r->rho_b, 0.1, &r->onset_v_se);
+  r->onset_v =
+      dem_rate_onset_speed(&r->rate_fit, r->rho_b, VH_RATE_ONSET_FRACTION, &r->onset_v_se);
   /* gamma* is proportional to v on one bed */
   double g_per_v = dem_gamma_star(dem_indent_strain_rate(1.0, b->bed_top), D_MEAN, G_ACC);
   r->onset_gamma_star = g_per_v * r->onset_v;

@@ -5,7 +5,7 @@
 # change to the report, the criteria or the CLI does not change what a run computes; with
 # the executable's hash every such change made every run again. The id is instead the
 # SHA-256 (first 16 hex digits) of everything a run's numbers depend on: the files listed
-# in INPUTS (libdem's sources and headers, validate/run.c and vh.h, the CMakeLists that set
+# in INPUTS (libdem's sources and headers, validate/run.c and vh_run.h, the CMakeLists that set
 # the compile options) and the configuration lines INPUTS carries (compiler and version,
 # build type and flags, GSL and HDF5 versions). The header is rewritten only when the id
 # changes, so an unrelated edit rebuilds nothing.

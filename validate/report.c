@@ -465,11 +465,12 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
                  "v^2 over the %d rates that ran (v the indenter speed, rho_b = %.0f kg/m^3 the "
                  "particle density times the bed's solids fraction; docs/analysis.md, \"Rate "
                  "dependence\") gives H0 = %.2f +- %.2f kPa and beta = %.2f +- %.2f (chi2 %.2g "
-                 "on %d dof%s%s). The dynamic part reaches 10 %% of H0 at v = %.3g +- %.2g m/s, "
+                 "on %d dof%s%s). The dynamic part reaches %.0f %% of H0 at v = %.3g +- %.2g m/s, "
                  "gamma* %.2g +- %.2g on this bed (the thesis: H flat up to gamma* ~ 1).",
              q->dof + 2, r->rho_b, q->H0 / 1e3, q->H0_se / 1e3, q->beta, q->beta_se, q->chi2,
              q->dof, pv, q->scale > 1.0 ? "; errors scaled by sqrt(chi2/dof)" : "",
-             r->onset_v, r->onset_v_se, r->onset_gamma_star, r->onset_gamma_star_se);
+             100.0 * VH_RATE_ONSET_FRACTION, r->onset_v, r->onset_v_se, r->onset_gamma_star,
+             r->onset_gamma_star_se);
     }
     for (int k = 0; k < 4; k++)
       if (r->plots[k][0]) d_img(&d, r->plots[k], r->plots[k]);
@@ -634,7 +635,8 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
                               jnum(q->H0_se), "beta", jnum(q->beta), "beta_se",
                               jnum(q->beta_se), "cov", jnum(q->cov), "chi2", jnum(q->chi2),
                               "dof", q->dof, "p", jnum(q->p), "scale", jnum(q->scale),
-                              "onset_fraction", 0.1, "onset_speed_m_s", jnum(r->onset_v),
+                              "onset_fraction", VH_RATE_ONSET_FRACTION, "onset_speed_m_s",
+                              jnum(r->onset_v),
                               "onset_speed_se", jnum(r->onset_v_se), "onset_gamma_star",
                               jnum(r->onset_gamma_star), "onset_gamma_star_se",
                               jnum(r->onset_gamma_star_se));

@@ -18,7 +18,7 @@
 
 #include "dem/params.h"
 #include "dem/table.h"
-#include "vh.h"
+#include "vh_run.h"
 
 /* The tiers (geometry in d; docs/validation.md gives the reasons).
  * quick:  thesis geometry scaled by ~0.6 (die 20 d, bed 12 d, sphere 8 d: indenter/die 0.4
@@ -63,11 +63,6 @@ const vh_tier *vh_tier_find(const char *name) {
   for (size_t i = 0; i < sizeof tiers / sizeof tiers[0]; i++)
     if (strcmp(tiers[i].name, name) == 0) return &tiers[i];
   return NULL;
-}
-
-const char *vh_status_name(vh_status s) {
-  static const char *n[] = {"PASS", "FAIL", "ERROR", "N/A"};
-  return n[s];
 }
 
 double vh_now(void) {
@@ -501,17 +496,4 @@ int vh_run_get(vh *h, const vh_bed *bspec, const vh_indent *ind, dem_err *err) {
          "%.0f s, %ld steps", h->nruns - 1, r->n, r->n ? r->hr[r->n - 1] : 0.0, r->sH.mean,
          r->sH.se, r->sH.sd, r->sp.mean, r->wall_s, r->steps);
   return h->nruns - 1;
-}
-
-int vh_greater(const vh *h, const dem_series_stats *a, const dem_series_stats *b,
-               dem_comparison *c) {
-  dem_err e = {0};
-  return dem_compare_means(a->mean, a->se, b->mean, b->se, h->level, DEM_TEST_GREATER, c, &e);
-}
-
-int vh_agree(const vh *h, const dem_series_stats *a, const dem_series_stats *b,
-             dem_comparison *c) {
-  dem_err e = {0};
-  return dem_compare_means(a->mean, a->se, b->mean, b->se, h->level, DEM_TEST_TWO_SIDED, c,
-                           &e);
 }
