@@ -27,20 +27,26 @@
  * criterion it could decide, and the next invocation over the same --beds folder goes on
  * from what this one made.
  *
- * Cost estimates (s, for the order and the --plan table only; measured on the 2-core AMD EPYC
- * VM of docs/validation.md with 2 threads on 2026-12-03 14:05, with the servo reading the
- * rate-independent piston load (gain x5), x1.9 for one thread: the 20 d bed in the 45 d die
- * at x0.01 1050 s (settle 379 s, consolidate 221 s, unload and relax 450 s), the 16 d sphere
- * to h/r 0.5 at gamma* 0.1 246 s): a bed costs ~ die^2 bed sqrt(k) (particles x steps of fill, settle and
- * consolidation, dt ~ 1/sqrt(k); the slower piston of a bed deeper than the reference is not
- * counted: the 50 d bed at gamma* 0.04 took 2.5x its estimate with the constants of before,
- * as settling dominates); a run costs particles x steps ~
- * die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r sqrt(k) / (gamma* dt_scale). Both x
- * 0.2 / dt_factor (--dt-factor: the estimates were measured at 0.2). Before the servo's
- * remedy (2026-12-03 morning) they were 1936 and 285 s (consolidate 952 s); until then
- * 454 and 195 s (a 2-core Xeon VM, 2026-12-01): they predated the bed's relax
- * phase and the longer hold of the consolidation without overshoot, and underestimated the
- * full tier ~2.5-4x (docs/validation.md).
+ * Cost estimates (s, for the order, --budget and the --plan table only), measured on the
+ * 2-core AMD EPYC VM of docs/validation.md with 2 threads, x1.9 for one thread.
+ * A bed costs ~ die^2 bed^1.5 sqrt(k) x 0.2 / dt_factor: particles ~ die^2 bed, and the
+ * simulated time of its stages grows with the depth (the fill falls from higher, settling
+ * ~ bed^0.5; the piston travels further at the same speed, consolidation ~ bed; the deep beds'
+ * hold and relax last longer), dt ~ 1/sqrt(k). The constant is the 20 d bed in the 45 d die
+ * at x0.01, 1100 s (1050 s on 2026-12-03, 1108 and 1128 s on 2026-12-06: settle 417 s,
+ * consolidate 225 s, unload and relax 466 s); the exponent 1.5 fits the other beds of the
+ * current program within 20 % (measured / estimated: 13 d bed in the 39 d die 413 s, 0.95;
+ * 30 d 2108 s, 1.04; 50 d 3992 s, 0.92; quick tier 12 d in the 20 d die 100 s, 0.99; 8 d in
+ * the 17.3 d die 33 s, 0.80), where the bed-linear die^2 bed of before read 0.51-1.45 on
+ * them with the same constant (the 50 d bed's 3992 s against 2750).
+ * A run costs particles x steps ~ die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r
+ * sqrt(k) / (gamma* dt_scale) x 0.2 / dt_factor, the 16 d sphere to h/r 0.5 at gamma* 0.1 on
+ * that bed 246 s (the 13 d sphere: 13 d bed 154 s against 150, 20 d 204-217 against 200,
+ * 30 d 374 against 300: the cost per particle-step grows ~17 % from the 20 d bed to the 30 d,
+ * not modelled). History: before the servo's remedy (2026-12-03 morning) 1936 and 285 s
+ * (consolidate 952 s); until then 454 and 195 s (a 2-core Xeon VM, 2026-12-01), which
+ * predated the bed's relax phase and the longer hold of the consolidation without overshoot
+ * and underestimated the full tier ~2.5-4x (docs/validation.md).
  */
 #include <math.h>
 #include <stdio.h>
@@ -56,8 +62,8 @@
 #include "vh.h"
 
 static double bed_cost(const vh *h, const vh_bed *b) {
-  return 1050.0 * (b->die * b->die * b->bed) / (45.0 * 45.0 * 20.0) * sqrt(b->kscale / 0.01) *
-         (0.2 / h->tier->dt_factor);
+  return 1100.0 * (b->die * b->die) / (45.0 * 45.0) * pow(b->bed / 20.0, 1.5) *
+         sqrt(b->kscale / 0.01) * (0.2 / h->tier->dt_factor);
 }
 
 static double run_cost(const vh *h, const vh_bed *b, const vh_indent *in) {
