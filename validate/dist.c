@@ -42,8 +42,8 @@
  * A run costs particles x steps ~ die^2 bed x (h/r D/2) / (gamma* bed dt) = die^2 D h/r
  * sqrt(k) / (gamma* dt_scale) x 0.2 / dt_factor, the 16 d sphere to h/r 0.5 at gamma* 0.1 on
  * that bed 246 s (the 13 d sphere: 13 d bed 154 s against 150, 20 d 204-217 against 200,
- * 30 d 374 against 300: the cost per particle-step grows ~17 % from the 20 d bed to the 30 d,
- * not modelled). History: before the servo's remedy (2026-12-03 morning) 1936 and 285 s
+ * 30 d 374 against 300, 50 d 484 against 500: 0.150-0.158 us per particle-step, the 30 d
+ * run's 0.182 the outlier). History: before the servo's remedy (2026-12-03 morning) 1936 and 285 s
  * (consolidate 952 s); until then 454 and 195 s (a 2-core Xeon VM, 2026-12-01), which
  * predated the bed's relax phase and the longer hold of the consolidation without overshoot
  * and underestimated the full tier ~2.5-4x (docs/validation.md).
