@@ -76,6 +76,99 @@ static size_t cubic_bed(double *x, double *r, int nx, int nz, double a, double r
   return n;
 }
 
+/* ---- footprint of the contacts on the indenter ------------------------------------------
+ * Oracles (docs/analysis.md 2b): a ring of radius R gives a_c = sqrt(2) R; a pressure
+ * distribution over a disk of radius R, lumped annulus by annulus into points that carry
+ * the annulus' exact load at the radius of its exact load-weighted mean rho^2, gives the
+ * continuous answer to round-off (the sums telescope): uniform a_c = R, Hertzian
+ * p0 sqrt(1 - rho^2/R^2) a_c = sqrt(4/5) R. */
+
+/* Hertz: load and load-weighted rho^2 of the disk rho^2 < u (p0 = 1, R = 1): with
+ * s = 1 - u, W(u) = (2 pi / 3)(1 - s^1.5), M(u) = 2 pi [(1 - s^1.5)/3 - (1 - s^2.5)/5]. */
+static double hz_W(double u) { return 2.0 * M_PI / 3.0 * (1.0 - pow(1.0 - u, 1.5)); }
+static double hz_M(double u) {
+  const double s = 1.0 - u;
+  return 2.0 * M_PI * ((1.0 - pow(s, 1.5)) / 3.0 - (1.0 - pow(s, 2.5)) / 5.0);
+}
+
+static size_t lumped_disk(int hertz, double R, double ax, double ay, int nring, int nphi,
+                          double *pt, double *w) {
+  size_t m = 0;
+  for (int i = 0; i < nring; i++) {
+    const double u0 = (double)i / nring, u1 = (double)(i + 1) / nring; /* (rho/R)^2 */
+    double W, M;
+    if (hertz) {
+      W = hz_W(u1) - hz_W(u0);
+      M = hz_M(u1) - hz_M(u0);
+    } else {
+      W = M_PI * (u1 - u0);
+      M = 0.5 * M_PI * (u1 * u1 - u0 * u0);
+    }
+    const double rho = R * sqrt(M / W);
+    for (int j = 0; j < nphi; j++) {
+      const double phi = 2.0 * M_PI * (j + 0.37 * i) / nphi;
+      pt[3 * m] = ax + rho * cos(phi);
+      pt[3 * m + 1] = ay + rho * sin(phi);
+      pt[3 * m + 2] = 1e-3 * (double)(i % 3); /* z plays no part */
+      w[m] = W / nphi;
+      m++;
+    }
+  }
+  return m;
+}
+
+START_TEST(test_footprint) {
+  enum { NR = 50, NPHI = 7 };
+  static double pt[3 * NR * NPHI + 6], w[NR * NPHI + 2];
+  const double R = 3.7e-3, ax = 0.0123, ay = -0.0041;
+  dem_footprint f;
+  dem_err err = {0};
+  /* a ring */
+  for (int j = 0; j < 12; j++) {
+    pt[3 * j] = ax + R * cos(0.5 * j);
+    pt[3 * j + 1] = ay + R * sin(0.5 * j);
+    pt[3 * j + 2] = 0.001 * j;
+    w[j] = 0.3;
+  }
+  ck_assert_int_eq(dem_indent_footprint(12, pt, w, ax, ay, &f, &err), DEM_OK);
+  RELTOL(f.a, sqrt(2.0) * R, 1e-14);
+  RELTOL(f.rho_max, R, 1e-14);
+  RELTOL(f.w, 3.6, 1e-14);
+  ck_assert_uint_eq(f.n, 12);
+  /* uniform pressure: a_c = R */
+  size_t m = lumped_disk(0, R, ax, ay, NR, NPHI, pt, w);
+  ck_assert_int_eq(dem_indent_footprint(m, pt, w, ax, ay, &f, &err), DEM_OK);
+  RELTOL(f.a, R, 1e-12);
+  RELTOL(f.w, M_PI, 1e-12);
+  ck_assert_msg(f.rho_max < R && f.rho_max > 0.99 * R, "rho_max %g", f.rho_max);
+  /* a contact in tension far out, and one with no load, are left out */
+  pt[3 * m] = ax + 10.0 * R, pt[3 * m + 1] = ay, pt[3 * m + 2] = 0.0, w[m] = -0.5;
+  pt[3 * m + 3] = ax, pt[3 * m + 4] = ay + 20.0 * R, pt[3 * m + 5] = 0.0, w[m + 1] = 0.0;
+  ck_assert_int_eq(dem_indent_footprint(m + 2, pt, w, ax, ay, &f, &err), DEM_OK);
+  RELTOL(f.a, R, 1e-12);
+  ck_assert_uint_eq(f.n, m);
+  /* Hertzian pressure: a_c = sqrt(4/5) R */
+  m = lumped_disk(1, R, ax, ay, NR, NPHI, pt, w);
+  ck_assert_int_eq(dem_indent_footprint(m, pt, w, ax, ay, &f, &err), DEM_OK);
+  RELTOL(f.a, sqrt(0.8) * R, 1e-12);
+  RELTOL(f.w, 2.0 * M_PI / 3.0, 1e-12);
+  /* nothing pressing: not an error */
+  w[0] = -1.0;
+  ck_assert_int_eq(dem_indent_footprint(1, pt, w, ax, ay, &f, &err), DEM_OK);
+  ck_assert(isnan(f.a) && isnan(f.rho_max) && f.n == 0 && f.w == 0.0);
+  ck_assert_int_eq(dem_indent_footprint(0, NULL, NULL, ax, ay, &f, &err), DEM_OK);
+  ck_assert(isnan(f.a));
+  /* bad input */
+  ck_assert_int_eq(dem_indent_footprint(3, NULL, w, ax, ay, &f, &err), DEM_EINVAL);
+  ck_assert_int_eq(dem_indent_footprint(1, pt, w, ax, ay, NULL, &err), DEM_EINVAL);
+  w[0] = NAN;
+  ck_assert_int_eq(dem_indent_footprint(1, pt, w, ax, ay, &f, &err), DEM_ENONFINITE);
+  ck_assert_msg(strstr(err.msg, "contact 0") != NULL, "%s", err.msg);
+  w[0] = 1.0;
+  ck_assert_int_eq(dem_indent_footprint(1, pt, w, NAN, ay, &f, &err), DEM_ENONFINITE);
+}
+END_TEST
+
 START_TEST(test_surface) {
   enum { NX = 15, NZ = 4 };
   static double x[3 * NX * NX * NZ], r[NX * NX * NZ], dz[NX * NX];
@@ -1043,6 +1136,7 @@ static Suite *suite(void) {
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, test_hardness);
   tcase_add_test(tc, test_surface);
+  tcase_add_test(tc, test_footprint);
   tcase_add_test(tc, test_unload_power_law);
   tcase_add_test(tc, test_unload_errors);
   tcase_add_test(tc, test_ar1_iat);

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -339,6 +340,102 @@ START_TEST(test_bad_files) {
 }
 END_TEST
 
+/* (f) a bed written before the footprint columns (16 columns, 2026-12-07): its blob is
+ * rebuilt here with the series cut to its first 16 columns; the restore reads it with the
+ * two new columns NaN, the first 16 unchanged, and indents on to the reference's
+ * indentation bit for bit (the footprint columns of the indentation rows are measured). A
+ * 15-column series is refused with a message naming the file. Blob layout: restart.c. */
+static size_t old_blob(const unsigned char *b, size_t len, int keep, unsigned char *out) {
+  size_t at = 32, o = 32;
+  memcpy(out, b, 32);
+  int64_t nc = 0, nr = 0;
+  while (at < len) {
+    const size_t nl = b[at];
+    char name[256];
+    memcpy(name, b + at + 1, nl);
+    name[nl] = 0;
+    const unsigned char type = b[at + 1 + nl];
+    uint64_t cnt;
+    memcpy(&cnt, b + at + 2 + nl, 8);
+    const size_t head = 10 + nl, body = (size_t)cnt * (type == 2 ? 1 : 8);
+    if (!strcmp(name, "series_ncols")) memcpy(&nc, b + at + head, 8);
+    if (!strcmp(name, "series_nrows")) memcpy(&nr, b + at + head, 8);
+    if (!strcmp(name, "series_ncols")) {
+      const int64_t k = keep;
+      memcpy(out + o, b + at, head);
+      memcpy(out + o + head, &k, 8);
+      o += head + 8;
+    } else if (!strcmp(name, "series")) {
+      const uint64_t c2 = (uint64_t)nr * (uint64_t)keep;
+      memcpy(out + o, b + at, head);
+      memcpy(out + o + 2 + nl, &c2, 8);
+      o += head;
+      for (int64_t r = 0; r < nr; r++) {
+        memcpy(out + o, b + at + head + 8 * (size_t)(r * nc), 8 * (size_t)keep);
+        o += 8 * (size_t)keep;
+      }
+    } else {
+      memcpy(out + o, b + at, head + body);
+      o += head + body;
+    }
+    at += head + body;
+  }
+  const uint64_t total = o;
+  memcpy(out + 24, &total, 8);
+  return o;
+}
+
+START_TEST(test_older_series) {
+  dem_err err;
+  char path[320];
+  snprintf(path, sizeof path, "%s_v16.h5", dir);
+  void *blob = NULL;
+  size_t blen = 0;
+  dem_sim *s = dem_sim_checkpoint_read(bed_file, &blob, &blen, &err);
+  ck_assert_msg(s != NULL, "%s", err.msg);
+  unsigned char *nb = malloc(blen);
+  size_t nlen = old_blob(blob, blen, 16, nb);
+  ck_assert_uint_lt(nlen, blen);
+  ck_assert_int_eq(dem_sim_checkpoint_write(s, path, nb, nlen, &err), DEM_OK);
+  dem_scene *sc = dem_scene_restore(path, NULL, NULL, &err);
+  ck_assert_msg(sc != NULL, "%s", err.msg);
+  const dem_table *t = dem_scene_series(sc);
+  ck_assert_int_eq(dem_table_ncols(t), 18);
+  ck_assert_int_eq(dem_table_nrows(t), ref_rows0);
+  for (long r = 0; r < ref_rows0; r++) {
+    for (int q = 0; q < 16; q++) {
+      double a = dem_table_get(t, r, q), b = dem_table_get(ref, r, q);
+      ck_assert_msg(a == b || (isnan(a) && isnan(b)), "row %ld col %d", r, q);
+    }
+    ck_assert(isnan(dem_table_get(t, r, 16)) && isnan(dem_table_get(t, r, 17)));
+  }
+  ck_assert_int_eq(dem_scene_run(sc, &err), DEM_OK);
+  ck_assert_int_eq(dem_table_nrows(t), dem_table_nrows(ref));
+  long pressing = 0;
+  for (long r = ref_rows0; r < dem_table_nrows(t); r++) {
+    for (int q = 0; q < 18; q++) {
+      double a = dem_table_get(t, r, q), b = dem_table_get(ref, r, q);
+      ck_assert_msg(a == b || (isnan(a) && isnan(b)), "row %ld col %d", r, q);
+    }
+    pressing += isfinite(dem_table_get(t, r, 17));
+  }
+  ck_assert_msg(pressing > 0, "no indentation row with a footprint");
+  dem_scene_free(sc);
+  /* 15 columns: refused */
+  nlen = old_blob(blob, blen, 15, nb);
+  ck_assert_int_eq(dem_sim_checkpoint_write(s, path, nb, nlen, &err), DEM_OK);
+  ck_assert_ptr_null(dem_scene_restore(path, NULL, NULL, &err));
+  ck_assert_msg(err.code == DEM_EPARSE && strstr(err.msg, "15 columns") && strstr(err.msg, path),
+                "%s", err.msg);
+  printf("older series: %ld rows restored with the footprint columns NaN; 15 columns: %s\n",
+         ref_rows0, err.msg);
+  free(nb);
+  free(blob);
+  dem_sim_free(s);
+  remove(path);
+}
+END_TEST
+
 int main(void) {
   Suite *su = suite_create("scene_restart");
   TCase *tc = tcase_create("restart");
@@ -346,6 +443,7 @@ int main(void) {
   tcase_add_unchecked_fixture(tc, bed_setup, bed_teardown);
   tcase_add_test(tc, test_override_forbidden);
   tcase_add_test(tc, test_bad_files);
+  tcase_add_test(tc, test_older_series);
   tcase_add_test(tc, test_bit_identical);
   tcase_add_test(tc, test_two_indenters);
   tcase_add_loop_test(tc, test_interrupted, 0, 1); /* one interruption: the suite < 60 s */

@@ -13,6 +13,8 @@
 #include "dem/analysis.h"
 #include "dem/scene.h"
 
+#define RELTOL(a, b, t) ck_assert_double_eq_tol((a), (b), (t) * fabs(b))
+
 /* Worst relative errors of the export against the engine's own totals. */
 typedef struct identity {
   double force;   /* max_i |sum_c F_c + m g - f_i| / (sum_c |F_c| + m |g|) */
@@ -332,13 +334,15 @@ START_TEST(test_scene) {
   printf("scene, indented: %zu pairs, %zu wall contacts, force %.2e wall %.2e\n", id.pairs,
          id.walls, id.force, id.wall);
   ck_assert_msg(id.force < 1e-9 && id.wall < 1e-9, "identity");
-  /* columns: 12..15 = bin_p, bin_q, bin_phi, base_p */
-  ck_assert_int_eq(dem_table_ncols(t), 16);
+  /* columns: 12..15 = bin_p, bin_q, bin_phi, base_p, 16..17 indenter_contacts,
+   * contact_radius */
+  ck_assert_int_eq(dem_table_ncols(t), 18);
   long nr = dem_table_nrows(t);
   for (long k = 0; k < r0; k++) {
     ck_assert(isnan(dem_table_get(t, k, 12)) && isnan(dem_table_get(t, k, 13)) &&
               isnan(dem_table_get(t, k, 14)));
     ck_assert(isfinite(dem_table_get(t, k, 15)));
+    ck_assert(isnan(dem_table_get(t, k, 16)) && isnan(dem_table_get(t, k, 17)));
   }
   long k0 = -1;
   for (long k = r0; k < nr; k++) {
@@ -361,6 +365,45 @@ START_TEST(test_scene) {
          dem_table_get(t, nr - 1, 12), dem_table_get(t, nr - 1, 13),
          dem_table_get(t, nr - 1, 14), dem_table_get(t, nr - 1, 15));
   ck_assert_msg(early > before, "bin_p before %g, early %g", before, early);
+  /* The footprint columns of the last row against the contacts the engine exports: the
+   * test finds the indenter as the wall whose contact points lie on the indenter's sphere
+   * (centre = tip + r, column 4 the tip) and recomputes count and a_c from them (sign: the
+   * indenter pushes the particles down, a pressing contact's force on i has f_z < 0). */
+  {
+    dem_sim_contact *cb = NULL;
+    size_t cap = 0, nc = 0;
+    ck_assert_int_eq(dem_sim_contacts(s, &cb, &cap, &nc, &err), DEM_OK);
+    const double zi = dem_table_get(t, nr - 1, 4) + 0.5 * c.indenter_diameter * c.d_mean;
+    const double ri = 0.5 * c.indenter_diameter * c.d_mean;
+    double sw = 0, swr2 = 0;
+    size_t ni = 0;
+    int wi = -1;
+    for (size_t k = 0; k < nc; k++) {
+      const double *pk = cb[k].point;
+      const double dist = sqrt(pk[0] * pk[0] + pk[1] * pk[1] + (pk[2] - zi) * (pk[2] - zi));
+      if (cb[k].wall < 0 || fabs(dist - ri) > 1e-9 * ri) continue;
+      if (wi < 0) wi = cb[k].wall;
+      ck_assert_int_eq(cb[k].wall, wi);
+    }
+    for (size_t k = 0; k < nc; k++) {
+      if (cb[k].wall != wi) continue;
+      ni++;
+      const double w = -cb[k].f[2], *pk = cb[k].point;
+      if (w > 0) sw += w, swr2 += w * (pk[0] * pk[0] + pk[1] * pk[1]);
+    }
+    free(cb);
+    const double a_last = dem_table_get(t, nr - 1, 17);
+    printf("scene, footprint: %zu indenter contacts, a_c %.3f d (eq. 2.9: %.3f d at h %.3f d)\n",
+           ni, a_last / c.d_mean,
+           sqrt(dem_scene_indent_area(c.shape, ri * 2, dem_table_get(t, nr - 1, 5)) / M_PI) /
+               c.d_mean,
+           dem_table_get(t, nr - 1, 5) / c.d_mean);
+    ck_assert_msg(wi >= 0 && ni > 0, "no indenter contact at the end");
+    ck_assert_double_eq(dem_table_get(t, nr - 1, 16), (double)ni);
+    RELTOL(a_last, sqrt(2.0 * swr2 / sw), 1e-12);
+    /* the load-weighted radius lies inside the outermost contact's reach */
+    ck_assert_msg(a_last > 0 && a_last <= sqrt(2.0) * ri, "a_c %g", a_last);
+  }
   for (long k = r0; k < nr; k++) {
     double phi = dem_table_get(t, k, 14);
     ck_assert_msg(phi > 0.2 && phi < 0.74, "bin_phi %g", phi);
@@ -384,7 +427,7 @@ START_TEST(test_switch) {
   const dem_table *t = dem_scene_series(sc);
   ck_assert_int_gt(dem_table_nrows(t), 3);
   for (long k = 0; k < dem_table_nrows(t); k++)
-    for (int col = 12; col < 16; col++) ck_assert(isnan(dem_table_get(t, k, col)));
+    for (int col = 12; col < 18; col++) ck_assert(isnan(dem_table_get(t, k, col)));
   c.output_stress = 2;
   ck_assert_int_eq(dem_scene_config_check(&c, &err), DEM_ERANGE);
   dem_scene_free(sc);

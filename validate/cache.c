@@ -1,7 +1,8 @@
 /* cache.c — runs kept across invocations, next to the beds (--beds DIR).
  *
  * A run is an indentation of one bed with one indenter; its result is the raw loading series
- * (h/r, H, bin p, q, phi, base p, F per sample) and a few scalars. The statistics are not
+ * (h/r, H, bin p, q, phi, base p, F, and the footprint a_c, Hc, indenter contacts per sample)
+ * and a few scalars. The statistics are not
  * stored: they are recomputed from the series on load, so a cached run serves any plateau
  * window. A cached run is used only if all of these match what this invocation would run:
  *   - the key: the bed's name (every parameter a bed depends on) and every indentation
@@ -32,7 +33,8 @@
 #include "vh_run.h"
 #include "vh_code_id.h" /* VH_CODE_ID, generated at build time by validate/code_id.cmake */
 
-#define CACHE_MAGIC "# dem-validate run cache, format 1"
+/* format 2 (2026-12-07): the footprint columns a_c, Hc, indenter contacts appended */
+#define CACHE_MAGIC "# dem-validate run cache, format 2"
 
 const char *vh_code_id(void) { return VH_CODE_ID; }
 
@@ -55,10 +57,11 @@ void vh_cache_path(const vh *h, const char *bed_name, const vh_indent *in, char 
 
 /* The series columns, in file order. */
 static double **columns(vh_run *r, int k) {
-  double **c[] = {&r->hr, &r->H, &r->bin_p, &r->bin_q, &r->bin_phi, &r->base_p, &r->F};
+  double **c[] = {&r->hr, &r->H, &r->bin_p, &r->bin_q, &r->bin_phi,
+                  &r->base_p, &r->F, &r->ac, &r->Hc, &r->nind};
   return c[k];
 }
-#define NCOLS 7
+#define NCOLS 10
 
 int vh_cache_load(const vh *h, const char *path, const char *bed_path, vh_run *r) {
   FILE *f = fopen(path, "r");
@@ -142,10 +145,12 @@ int vh_cache_save(const vh *h, const char *path, const char *bed_path, const vh_
           "# surface_sd %.17g\n# peak_overlap %.17g\n# base_p0 %.17g\n# have_stress %d\n"
           "# samples %zu\n", r->wall_s, h->threads, r->steps, r->dt, r->surface,
           r->surface_sd, r->peak_overlap, r->base_p0, r->have_stress, r->n);
-  fprintf(f, "# columns h/r H[Pa] bin_p[Pa] bin_q[Pa] bin_phi base_p[Pa] F[N]\n");
+  fprintf(f, "# columns h/r H[Pa] bin_p[Pa] bin_q[Pa] bin_phi base_p[Pa] F[N] a_c[m] Hc[Pa] "
+             "indenter_contacts\n");
+  vh_run *rw = (vh_run *)r; /* columns() names the arrays; nothing is written through it */
   for (size_t i = 0; i < r->n; i++)
-    fprintf(f, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", r->hr[i], r->H[i], r->bin_p[i],
-            r->bin_q[i], r->bin_phi[i], r->base_p[i], r->F[i]);
+    for (int k = 0; k < NCOLS; k++)
+      fprintf(f, "%.17g%c", (*columns(rw, k))[i], k + 1 < NCOLS ? ' ' : '\n');
   int bad = ferror(f);
   if (fclose(f) || bad || rename(tmp, path)) {
     int e = errno;

@@ -102,7 +102,9 @@ static int close_rename(FILE *f, const char *tmp, const char *dir, const char *n
   return DEM_OK;
 }
 
-/* data/run_NN.dat: h/r, H [Pa], bin p, bin q, bin phi, base p [Pa], F [N]. */
+/* data/run_NN.dat: h/r, H [Pa], bin p, bin q, bin phi, base p [Pa], F [N], then the
+ * footprint of the indenter's contacts: a_c [d], Hc = F / (pi a_c^2) [Pa], a_c^2 / (D h - h^2)
+ * (spheres; NaN otherwise), indenter contacts. */
 static int write_run_data(const vh *h, int i, dem_err *err) {
   char dir[600], name[64], tmp[800];
   snprintf(dir, sizeof dir, "%s/data", h->out);
@@ -110,10 +112,14 @@ static int write_run_data(const vh *h, int i, dem_err *err) {
   FILE *f = open_tmp(dir, name, tmp, sizeof tmp);
   if (!f) return dem_err_set(err, DEM_EIO, "dem-validate: cannot write %s/%s", dir, name);
   const vh_run *r = &h->runs[i];
-  fprintf(f, "# %s\n# h/r  H[Pa]  bin_p[Pa]  bin_q[Pa]  bin_phi  base_p[Pa]  F[N]\n", r->label);
-  for (size_t k = 0; k < r->n; k++)
-    fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", r->hr[k], r->H[k], r->bin_p[k],
-            r->bin_q[k], r->bin_phi[k], r->base_p[k], r->F[k]);
+  fprintf(f, "# %s\n# h/r  H[Pa]  bin_p[Pa]  bin_q[Pa]  bin_phi  base_p[Pa]  F[N]  a_c[d]  "
+             "Hc[Pa]  a_c^2/(Dh-h^2)  indenter_contacts\n", r->label);
+  for (size_t k = 0; k < r->n; k++) {
+    const double ratio = vh_footprint_ratio(r, k);
+    fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", r->hr[k], r->H[k],
+            r->bin_p[k], r->bin_q[k], r->bin_phi[k], r->base_p[k], r->F[k], r->ac[k] / D_MEAN,
+            r->Hc[k], ratio, r->nind[k]);
+  }
   return close_rename(f, tmp, dir, name, err);
 }
 
@@ -149,13 +155,15 @@ int vh_plot_runs(const vh *h, const char *png, const char *title, const int *run
                               png, title);
   const char *yl = column == 2   ? "H [kPa]"
                    : column == 5 ? "solids fraction of the dynamic bin"
+                   : column == 9 ? "Hc = F / (pi a_c^2) [kPa]"
                                  : "stress [kPa]";
   /* the first samples (a few particles under a vanishing area) reach tens of times the
    * plateau: show the plateau, as the thesis' figures do (they start at one diameter) */
   double top = 0;
   for (int i = 0; i < nruns; i++) {
     const vh_run *r = &h->runs[runs[i]];
-    double v = column == 2 ? r->sH.mean : column == 3 ? r->sp.mean : NAN;
+    double v = column == 2 ? r->sH.mean : column == 3 ? r->sp.mean
+                                         : column == 9 ? r->sHc.mean : NAN;
     if (isfinite(v) && v > top) top = v;
   }
   if (top > 0) m += (size_t)snprintf(s + m, sizeof s - m, "set yrange [0:%g]\n", 2.5 * top / 1e3);
@@ -271,7 +279,20 @@ static void case_plots(vh *h, vh_case_result *r, int plots, dem_err *err) {
     if (!vh_plot_trend(h, png, title, r->xlabel, r->x, r->runs, r->nruns, r->logx, err))
       snprintf(r->plots[k++], 96, "%s", png);
   }
-  if (r->has_rate_fit && k < 4) {
+  /* the mean pressure on the contacts' own footprint (docs/analysis.md 2b), for the cases
+   * whose reading depends on the contact area: the plateau's shape, the shallow bed and the
+   * large balls */
+  const int foot = !strcmp(r->name, "plateau") || !strcmp(r->name, "bed-height") ||
+                   !strcmp(r->name, "indenter-size");
+  int have_foot = 0;
+  for (int i = 0; i < n; i++) have_foot |= isfinite(h->runs[runs[i]].sHc.mean);
+  if (foot && have_foot && k < 5) {
+    snprintf(png, sizeof png, "%s_Hc.png", r->name);
+    snprintf(title, sizeof title, "%s: mean pressure on the contacts' footprint", r->title);
+    if (!vh_plot_runs(h, png, title, runs, n, labels, 9, err))
+      snprintf(r->plots[k++], 96, "%s", png);
+  }
+  if (r->has_rate_fit && k < 5) {
     snprintf(png, sizeof png, "%s_dynamic.png", r->name);
     if (!plot_rate_fit(h, r, png, err)) snprintf(r->plots[k++], 96, "%s", png);
   }
@@ -472,16 +493,16 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
              100.0 * VH_RATE_ONSET_FRACTION, r->onset_v, r->onset_v_se, r->onset_gamma_star,
              r->onset_gamma_star_se);
     }
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < 5; k++)
       if (r->plots[k][0]) d_img(&d, r->plots[k], r->plots[k]);
     d_table_begin(&d);
     const char *rh[] = {"run", "v [m/s]", "H [kPa]", "sd(H) [kPa]", "bin p [kPa]",
-                        "bin q [kPa]", "bin phi", "surface sd [d]", "peak overlap [r]",
-                        "steps", "wall [s]", "status"};
-    d_row(&d, 1, 12, rh);
+                        "bin q [kPa]", "bin phi", "Hc [kPa]", "a_c^2 / a(h)^2",
+                        "surface sd [d]", "peak overlap [r]", "steps", "wall [s]", "status"};
+    d_row(&d, 1, 14, rh);
     for (int k = 0; k < r->nruns; k++) {
       const vh_run *u = &h->runs[r->runs[k]];
-      char c[12][96];
+      char c[14][96];
       snprintf(c[0], 96, "%s", r->labels[k]);
       if (isfinite(u->v)) snprintf(c[1], 96, "%.3g", u->v);
       else snprintf(c[1], 96, "-");
@@ -493,15 +514,19 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
       fmt_stats(c[4], 96, &sp, 1e-3);
       fmt_stats(c[5], 96, &sq, 1e-3);
       fmt_stats(c[6], 96, &sphi, 1.0);
-      snprintf(c[7], 96, "%.2f", u->surface_sd / 1e-3);
-      if (u->skipped) snprintf(c[8], 96, "-");
-      else snprintf(c[8], 96, "%.3f", u->peak_overlap);
-      snprintf(c[9], 96, "%ld", u->steps);
-      snprintf(c[10], 96, "%.0f%s", u->wall_s, u->cached ? " (cached)" : "");
-      snprintf(c[11], 96, "%.95s", u->status ? u->error : "ok");
-      const char *cells[12];
-      for (int j = 0; j < 12; j++) cells[j] = c[j];
-      d_row(&d, 0, 12, cells);
+      const dem_series_stats sHc = run_stats_of(u, &u->sHc), sft = run_stats_of(u, &u->sfoot);
+      fmt_stats(c[7], 96, &sHc, 1e-3);
+      if (isfinite(sft.mean)) snprintf(c[8], 96, "%.3f", sft.mean);
+      else snprintf(c[8], 96, "-");
+      snprintf(c[9], 96, "%.2f", u->surface_sd / 1e-3);
+      if (u->skipped) snprintf(c[10], 96, "-");
+      else snprintf(c[10], 96, "%.3f", u->peak_overlap);
+      snprintf(c[11], 96, "%ld", u->steps);
+      snprintf(c[12], 96, "%.0f%s", u->wall_s, u->cached ? " (cached)" : "");
+      snprintf(c[13], 96, "%.95s", u->status ? u->error : "ok");
+      const char *cells[14];
+      for (int j = 0; j < 14; j++) cells[j] = c[j];
+      d_row(&d, 0, 14, cells);
     }
     d_table_end(&d);
   }
@@ -624,6 +649,10 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
       json_object_set_new(j, "threads", json_integer(u->threads));
       json_object_set_new(j, "peak_overlap_frac", u->skipped ? json_null() : jnum(u->peak_overlap));
       json_object_set_new(j, "speed_m_s", jnum(u->v));
+      /* the footprint of the indenter's contacts (docs/analysis.md 2b) */
+      const dem_series_stats sHc = run_stats_of(u, &u->sHc), sft = run_stats_of(u, &u->sfoot);
+      json_object_set_new(j, "Hc", jstats(&sHc));
+      json_object_set_new(j, "footprint_ratio", jstats(&sft));
       json_array_append_new(runs, j);
     }
     json_object_set_new(c, "checks", checks);

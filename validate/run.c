@@ -270,10 +270,12 @@ static int series_extract(vh *h, vh_run *r, const dem_table *t, dem_err *err) {
     return dem_err_set(err, DEM_EINVAL, "dem-validate: the time series lacks stage, "
                                         "indenter_z or indenter_force");
   const int cp = col(t, "bin_p"), cq = col(t, "bin_q"), cphi = col(t, "bin_phi"),
-            cb = col(t, "base_p");
+            cb = col(t, "base_p"), ca = col(t, "contact_radius"),
+            cn = col(t, "indenter_contacts");
   long nr = dem_table_nrows(t);
   size_t cap = (size_t)nr + 1;
-  double **arr[] = {&r->hr, &r->H, &r->bin_p, &r->bin_q, &r->bin_phi, &r->base_p, &r->F};
+  double **arr[] = {&r->hr,     &r->H, &r->bin_p, &r->bin_q, &r->bin_phi,
+                    &r->base_p, &r->F, &r->ac,    &r->Hc,    &r->nind};
   for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++) {
     *arr[k] = calloc(cap, sizeof(double));
     if (!*arr[k]) return dem_err_set(err, DEM_ENOMEM, "dem-validate: out of memory");
@@ -298,10 +300,20 @@ static int series_extract(vh *h, vh_run *r, const dem_table *t, dem_err *err) {
     r->bin_q[k] = cq >= 0 ? dem_table_get(t, i, cq) : NAN;
     r->bin_phi[k] = cphi >= 0 ? dem_table_get(t, i, cphi) : NAN;
     r->base_p[k] = bp;
+    r->ac[k] = ca >= 0 ? dem_table_get(t, i, ca) : NAN;
+    r->nind[k] = cn >= 0 ? dem_table_get(t, i, cn) : NAN;
+    r->Hc[k] = r->ac[k] > 0.0 ? F / (M_PI * r->ac[k] * r->ac[k]) : NAN;
   }
   r->have_stress = cp >= 0 && cq >= 0;
   (void)h;
   return DEM_OK;
+}
+
+double vh_footprint_ratio(const vh_run *r, size_t i) {
+  if (r->ind.shape != DEM_INDENTER_SPHERE || !(r->ac[i] > 0.0)) return NAN;
+  const double D = r->ind.D * D_MEAN;
+  const double A = dem_indent_area(D, r->hr[i] * 0.5 * D); /* eq. 2.9, pi (D h - h^2) */
+  return A > 0.0 ? M_PI * r->ac[i] * r->ac[i] / A : NAN;
 }
 
 /* Plateau statistics of y over [lo, hi]; on failure mean = NaN. */
@@ -329,12 +341,23 @@ static void run_stats(const vh *h, vh_run *r) {
   stats(r, r->bin_p, t->plateau_lo, t->plateau_hi, &r->sp);
   stats(r, r->bin_q, t->plateau_lo, t->plateau_hi, &r->sq);
   stats(r, r->bin_phi, t->plateau_lo, t->plateau_hi, &r->sphi);
+  stats(r, r->Hc, t->plateau_lo, t->plateau_hi, &r->sHc);
+  double *ratio = r->ind.shape == DEM_INDENTER_SPHERE ? malloc((r->n + 1) * sizeof *ratio) : NULL;
+  for (size_t i = 0; ratio && i < r->n; i++) ratio[i] = vh_footprint_ratio(r, i);
+  if (ratio) stats(r, ratio, t->plateau_lo, t->plateau_hi, &r->sfoot);
+  else {
+    memset(&r->sfoot, 0, sizeof r->sfoot); /* not a sphere: no eq. 2.9 area to compare with */
+    r->sfoot.mean = r->sfoot.se = r->sfoot.sd = r->sfoot.cv = r->sfoot.slope = NAN;
+    r->sfoot.n_eff = NAN;
+  }
+  free(ratio);
 }
 
 void vh_run_release(vh_run *u) {
   free(u->hr), free(u->H), free(u->bin_p), free(u->bin_q), free(u->bin_phi);
-  free(u->base_p), free(u->F);
+  free(u->base_p), free(u->F), free(u->ac), free(u->Hc), free(u->nind);
   u->hr = u->H = u->bin_p = u->bin_q = u->bin_phi = u->base_p = u->F = NULL;
+  u->ac = u->Hc = u->nind = NULL;
   u->n = 0;
 }
 

@@ -45,7 +45,7 @@ typedef struct vh_case_result {
   double x[VH_MAX_CASE_RUNS];         /* the varied parameter (NAN: none) */
   const char *xlabel;    /* its name and unit, for the trend figure (NULL: no trend) */
   int logx;
-  char plots[4][96];     /* PNG files written for this case ("" if none) */
+  char plots[5][96];     /* PNG files written for this case ("" if none) */
   char note[400];
   /* case 10 only, not a criterion: H = H0 + beta rho_b v^2 over its rates
    * (dem_rate_fit_dynamic); has_rate_fit 0 if fewer than 3 rates ran */

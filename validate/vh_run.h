@@ -119,9 +119,16 @@ typedef struct vh_run {
                           of the run (dem_sim_stats.peak_overlap_frac) */
   size_t n;
   double *hr, *H, *bin_p, *bin_q, *bin_phi, *base_p, *F; /* [n] */
+  /* the footprint of the indenter's contacts (scene columns contact_radius and
+     indenter_contacts, dem_indent_footprint; NaN where not measured): a_c [m], the mean
+     pressure on it Hc = F / (pi a_c^2) [Pa], and the contacts [-] */
+  double *ac, *Hc, *nind; /* [n] */
   double base_p0;      /* Pa, base stress at the first contact */
   /* statistics over the plateau window (H; stresses if available) */
   dem_series_stats sH, sp, sq, sphi;
+  dem_series_stats sHc;    /* Hc over the plateau window (NaN mean if not measured) */
+  dem_series_stats sfoot;  /* a_c^2 / a(h)^2 over the plateau window, a(h)^2 = D h - h^2 of
+                              eq. 2.9 (spheres): < 1 sink-in, > 1 pile-up */
   int have_stress;
   dem_series_stats sEarly; /* H over the early window */
   unsigned cases;      /* plan: bit k set if the k-th selected case needs the run (dist.c) */
@@ -186,6 +193,9 @@ int vh_cache_save(const vh *h, const char *path, const char *bed_path, const vh_
                   dem_err *err);
 void vh_bed_info_save(const vh_bed *b, int threads);
 double vh_bed_info_load(const vh_bed *b);
+/* a_c^2 / a(h)^2 of sample i, a(h)^2 = D h - h^2 (eq. 2.9): < 1 the bed sinks in around the
+ * ball, > 1 it piles up; NaN for other shapes or where a_c is not measured. */
+double vh_footprint_ratio(const vh_run *r, size_t i);
 /* Free the series of one run (pointers set to NULL, n = 0). */
 void vh_run_release(vh_run *r);
 /* Free the series of every run and forget the beds and runs (after a plan). */

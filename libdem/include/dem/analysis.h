@@ -70,6 +70,33 @@ typedef struct dem_surface {
 int dem_bed_surface(size_t n, const double *x, const double *radius, double ax, double ay,
                     double r_foot, double cell, double pct, dem_surface *out, dem_err *err);
 
+/* ---- the footprint of the contacts on the indenter (sink-in / pile-up) ----------------- */
+
+/* Eq. 2.9 takes the projected contact area at depth h to be the cap's cross-section at the
+ * undisturbed surface, pi a(h)^2 with a(h)^2 = D h - h^2. The bed may sink in around the
+ * indenter (the real footprint is smaller) or pile up (larger). The footprint read off the
+ * contacts themselves tests that assumption (docs/analysis.md, section 2b):
+ *   a_c^2 = 2 sum(w_k rho_k^2) / sum(w_k)
+ * over the contacts with w_k > 0, rho_k the distance of contact k from the indenter axis,
+ * w_k the vertical load it puts on the indenter (N). For a uniform vertical pressure over a
+ * disk of radius a, which a uniform normal pressure on a sphere gives (p dS cos(theta) =
+ * p dA_projected), the load-weighted mean of rho^2 is a^2 / 2, so a_c = a and
+ * F / (pi a_c^2) is that pressure. A pressure that falls towards the rim reads smaller:
+ * Hertz's p ~ sqrt(1 - rho^2/a^2) gives a_c = sqrt(4/5) a = 0.894 a. Contacts in tension
+ * (w_k <= 0, adhesion) carry no pressure and are left out. */
+typedef struct dem_footprint {
+  double a;       /* m, a_c above; NaN if no contact has w > 0 */
+  double rho_max; /* m, the outermost contact with w > 0 (NaN if none) */
+  double w;       /* N, sum of the positive loads */
+  size_t n;       /* contacts with w > 0 */
+} dem_footprint;
+
+/* point [3n] contact points (m), w [n] loads (N), (ax, ay) the indenter axis (m).
+ * DEM_EINVAL for NULL arrays with n > 0 or a NULL out, DEM_ENONFINITE for a NaN or inf
+ * input. No contact with w > 0 is not an error (a, rho_max NaN, n 0). */
+int dem_indent_footprint(size_t n, const double *point, const double *w, double ax, double ay,
+                         dem_footprint *out, dem_err *err);
+
 /* ---- contact depth from the initial unloading (thesis 2.3.5) --------------------------- */
 
 typedef enum {

@@ -80,6 +80,7 @@ typedef struct dem_scene_config {
   double sample_interval; /* s, time-series row interval (0: 200 rows per stage) */
   /* output */
   int output_stress;      /* 1 (default): the stress columns bin_p, bin_q, bin_phi, base_p
+                             and the footprint columns indenter_contacts, contact_radius
                              of the time series (one contact export per row, see
                              dem_scene_series); 0: those columns are NaN */
 } dem_scene_config;
@@ -141,7 +142,15 @@ dem_sim *dem_scene_sim(dem_scene *sc);
  *   bin_q [Pa]   deviatoric stress (5.3) in the same bin; stages 3 and 4;
  *   bin_phi [-]  solids fraction of the same bin (Fig 6.4); stages 3 and 4;
  *   base_p [Pa]  hydrostatic stress in a bin of the same size on the axis at the base
- *                (bottom face at z = 0); every stage. */
+ *                (bottom face at z = 0); every stage;
+ * then the footprint of the indenter's contacts (dem_indent_footprint; the same switch;
+ * stages 3 and 4, NaN before; since 2026-12-07, NaN in the rows of a restored older bed):
+ *   indenter_contacts [-]  particles touching the indenter;
+ *   contact_radius [m]     a_c = sqrt(2 sum(w rho^2) / sum(w)), w the vertical load of a
+ *                contact on the indenter, rho its distance from the axis: the radius of the
+ *                loaded footprint (a uniform pressure over a disk of radius a gives a); NaN
+ *                while nothing presses. indenter_force / (pi a_c^2) is the mean pressure on
+ *                the footprint, to compare with hardness (eq. 2.9's pi (D h - h^2)). */
 const dem_table *dem_scene_series(const dem_scene *sc);
 void dem_scene_get_info(const dem_scene *sc, dem_scene_info *info);
 /* The discrete size distribution: diameters (in d) and number fractions of a table. */

@@ -121,6 +121,42 @@ int dem_bed_surface(size_t n, const double *x, const double *radius, double ax, 
   return DEM_OK;
 }
 
+/* a_c^2 = 2 sum(w rho^2) / sum(w): the load-weighted second moment of a uniform disk is
+ * a^2 / 2 (dem/analysis.h, docs/analysis.md section 2b). */
+int dem_indent_footprint(size_t n, const double *point, const double *w, double ax, double ay,
+                         dem_footprint *out, dem_err *err) {
+  if (!out) return dem_err_set(err, DEM_EINVAL, "indent footprint: NULL out");
+  out->a = out->rho_max = NAN;
+  out->w = 0.0;
+  out->n = 0;
+  if (n > 0 && (!point || !w))
+    return dem_err_set(err, DEM_EINVAL, "indent footprint: NULL point or w array with n = %zu",
+                       n);
+  if (!isfinite(ax) || !isfinite(ay))
+    return dem_err_set(err, DEM_ENONFINITE, "indent footprint: axis (%g, %g) m", ax, ay);
+  double sw = 0.0, swr2 = 0.0, rmax = 0.0;
+  size_t m = 0;
+  for (size_t k = 0; k < n; k++) {
+    const double *x = point + 3 * k;
+    if (!isfinite(w[k]) || !isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]))
+      return dem_err_set(err, DEM_ENONFINITE,
+                         "indent footprint: contact %zu: w = %g N, point (%g, %g, %g) m", k,
+                         w[k], x[0], x[1], x[2]);
+    if (!(w[k] > 0.0)) continue;
+    const double dx = x[0] - ax, dy = x[1] - ay, r2 = dx * dx + dy * dy;
+    sw += w[k];
+    swr2 += w[k] * r2;
+    if (r2 > rmax) rmax = r2;
+    m++;
+  }
+  if (m == 0) return DEM_OK;
+  out->a = sqrt(2.0 * swr2 / sw);
+  out->rho_max = sqrt(rmax);
+  out->w = sw;
+  out->n = m;
+  return DEM_OK;
+}
+
 double dem_gamma_star(double gamma_dot, double d, double g) {
   if (!(d > 0.0) || !(g > 0.0)) return NAN;
   return gamma_dot * sqrt(d / g);

@@ -510,11 +510,14 @@ dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
   int64_t nc = 0, nr = 0;
   if (get_i(&rb, "series_ncols", &nc) || get_i(&rb, "series_nrows", &nr)) goto fail;
   if (!(sc->series = scene_series_create(err))) goto fail;
-  if (nc != dem_table_ncols(sc->series) || nr < 0) {
+  /* a checkpoint written before the footprint columns (SCENE_NSERIES_V3) keeps its beds:
+   * its rows are read with the appended columns NaN (not measured then) */
+  const int nc_now = dem_table_ncols(sc->series);
+  if ((nc != nc_now && nc != SCENE_NSERIES_V3) || nr < 0) {
     dem_err_set(err, DEM_EPARSE,
-                "%s: scene state: the time series has %lld columns, this build %d (written "
-                "by another version?)",
-                path, (long long)nc, dem_table_ncols(sc->series));
+                "%s: scene state: the time series has %lld columns, this build reads %d or "
+                "%d (written by another version?)",
+                path, (long long)nc, nc_now, SCENE_NSERIES_V3);
     goto fail;
   }
   if (!(r = find(&rb, "series", T_F64, 0))) goto fail;
@@ -529,8 +532,12 @@ dem_scene *dem_scene_restore(const char *path, const dem_scene_config *override,
     goto fail;
   }
   memcpy(tab, r->data, (size_t)r->count * sizeof *tab);
-  for (int64_t k = 0; k < nr; k++)
-    if (dem_table_append(sc->series, tab + (size_t)k * (size_t)nc, err)) goto fail;
+  for (int64_t k = 0; k < nr; k++) {
+    double row[SCENE_NSERIES]; /* nc_now: scene_series_create makes SCENE_NSERIES */
+    for (int q = 0; q < nc_now; q++)
+      row[q] = q < nc ? tab[(size_t)k * (size_t)nc + (size_t)q] : NAN;
+    if (dem_table_append(sc->series, row, err)) goto fail;
+  }
   /* the stored config must pass today's checks too */
   if (dem_scene_config_check(&sc->cfg, err)) {
     char msg[sizeof err->msg];

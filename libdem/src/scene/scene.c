@@ -191,10 +191,17 @@ fail:
 static const char *const series_names[] = {
     "t", "stage", "piston_z", "piston_stress", "indenter_z", "depth", "h_over_r",
     "indenter_force", "hardness", "kinetic_energy", "contacts", "wall_contacts",
-    "bin_p", "bin_q", "bin_phi", "base_p"};
-static const char *const series_units[] = {"s", "-", "m", "Pa", "m", "m", "-", "N",
-                                           "Pa", "J", "-", "-", "Pa", "Pa", "-", "Pa"};
-#define NSERIES 16 /* the last SCENE_NSTRESS from scene_stress_row (stress.c) */
+    "bin_p", "bin_q", "bin_phi", "base_p", "indenter_contacts", "contact_radius"};
+static const char *const series_units[] = {"s", "-", "m", "Pa", "m", "m", "-", "N", "Pa", "J",
+                                           "-", "-", "Pa", "Pa", "-", "Pa", "-", "m"};
+/* The last SCENE_NCONTACT come from scene_stress_row (stress.c). indenter_contacts and
+ * contact_radius were added on 2026-12-07; a checkpoint written before has the first
+ * SCENE_NSERIES_V3 columns, and its rows are read with the two new ones NaN (restart.c). */
+#define NSERIES SCENE_NSERIES
+_Static_assert(sizeof series_names / sizeof *series_names == NSERIES &&
+                   sizeof series_units / sizeof *series_units == NSERIES,
+               "a name and a unit per column");
+_Static_assert(NSERIES - SCENE_NCONTACT == 12, "record() fills the first 12 columns");
 
 dem_table *scene_series_create(dem_err *err) {
   return dem_table_create(NSERIES, series_names, series_units, err);
@@ -388,7 +395,7 @@ static int record(dem_scene *sc, dem_err *err) {
                          dem_sim_kinetic_energy(sc->sim),
                          (double)st.contacts,
                          (double)st.wall_contacts};
-  int rc = scene_stress_row(sc, row + NSERIES - SCENE_NSTRESS, err);
+  int rc = scene_stress_row(sc, row + NSERIES - SCENE_NCONTACT, err);
   if (rc) return rc;
   return dem_table_append(sc->series, row, err);
 }

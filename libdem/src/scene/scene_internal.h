@@ -42,6 +42,9 @@ struct dem_scene {
   /* contacts and stresses (stress.c) */
   dem_sim_contact *cbuf;     /* engine contact export */
   size_t ccap;
+  size_t cn;                 /* records in cbuf after the last export */
+  double *fp_buf;            /* indenter contacts' points [3] and loads [1] (footprint) */
+  size_t fp_cap;
   size_t *v_part;            /* dem_contact_view arrays: every pair twice, walls once */
   double *v_point, *v_force;
   size_t vcap;
@@ -58,10 +61,14 @@ double scene_servo_ki(const dem_scene *sc, double z_half, double f_half, double 
 dem_table *scene_series_create(dem_err *err);
 
 int scene_fill(dem_scene *sc, dem_err *err);
-/* stress.c: the stress columns of a row (bin_p, bin_q, bin_phi, base_p; NaN where not
- * defined) and the buffers' release. */
-#define SCENE_NSTRESS 4
-int scene_stress_row(dem_scene *sc, double out[SCENE_NSTRESS], dem_err *err);
+/* stress.c: the columns of a row read off the contacts (bin_p, bin_q, bin_phi, base_p,
+ * indenter_contacts, contact_radius; NaN where not defined) and the buffers' release. */
+#define SCENE_NCONTACT 6
+/* columns of the time series before indenter_contacts and contact_radius were appended
+ * (checkpoints written until 2026-12-07; restart.c reads them with those two NaN) */
+#define SCENE_NSERIES_V3 16
+#define SCENE_NSERIES 18 /* now: SCENE_NSERIES_V3 + indenter_contacts, contact_radius */
+int scene_stress_row(dem_scene *sc, double out[SCENE_NCONTACT], dem_err *err);
 void scene_stress_free(dem_scene *sc);
 void scene_psd_moments(dem_scene_psd psd, double d_mean, double *mean, double *sd);
 

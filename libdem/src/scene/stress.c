@@ -32,6 +32,7 @@ static int contacts(dem_scene *sc, dem_contact_view *view, int evaluate, dem_err
   if (evaluate && (rc = dem_sim_run(sc->sim, 0, err))) return rc;
   size_t nc = 0;
   if ((rc = dem_sim_contacts(sc->sim, &sc->cbuf, &sc->ccap, &nc, err))) return rc;
+  sc->cn = nc;
   size_t need = 0;
   for (size_t k = 0; k < nc; k++) need += sc->cbuf[k].wall < 0 ? 2 : 1;
   if (need > sc->vcap) {
@@ -77,14 +78,47 @@ void scene_stress_free(dem_scene *sc) {
   free(sc->v_part);
   free(sc->v_point);
   free(sc->v_force);
+  free(sc->fp_buf);
+  sc->fp_buf = NULL;
+  sc->fp_cap = sc->cn = 0;
   sc->cbuf = NULL;
   sc->v_part = NULL;
   sc->v_point = sc->v_force = NULL;
   sc->ccap = sc->vcap = 0;
 }
 
-int scene_stress_row(dem_scene *sc, double out[SCENE_NSTRESS], dem_err *err) {
-  for (int k = 0; k < SCENE_NSTRESS; k++) out[k] = NAN;
+/* The footprint of the indenter's contacts (dem_indent_footprint, docs/analysis.md 2b): each
+ * contact's point and the vertical load it puts on the indenter, -f_z of the force on the
+ * particle (the indenter pushes the particles down, so a pressing contact has f_z < 0). */
+static int footprint(dem_scene *sc, const dem_wall_spec *w, double out[2], dem_err *err) {
+  size_t m = 0;
+  for (size_t k = 0; k < sc->cn; k++) m += sc->cbuf[k].wall == sc->w_ind;
+  out[0] = (double)m;
+  if (m > sc->fp_cap) {
+    size_t cap = m + m / 4 + 64;
+    double *b = realloc(sc->fp_buf, 4 * cap * sizeof *b);
+    if (!b)
+      return dem_err_set(err, DEM_ENOMEM, "scene footprint: out of memory (%zu contacts)", cap);
+    sc->fp_buf = b;
+    sc->fp_cap = cap;
+  }
+  double *pt = sc->fp_buf, *ld = sc->fp_buf + 3 * sc->fp_cap;
+  size_t j = 0;
+  for (size_t k = 0; k < sc->cn; k++) {
+    const dem_sim_contact *c = sc->cbuf + k;
+    if (c->wall != sc->w_ind) continue;
+    memcpy(pt + 3 * j, c->point, sizeof c->point);
+    ld[j++] = -c->f[2];
+  }
+  dem_footprint f;
+  int rc = dem_indent_footprint(m, pt, ld, w->p[0], w->p[1], &f, err);
+  if (rc) return rc;
+  out[1] = f.a;
+  return DEM_OK;
+}
+
+int scene_stress_row(dem_scene *sc, double out[SCENE_NCONTACT], dem_err *err) {
+  for (int k = 0; k < SCENE_NCONTACT; k++) out[k] = NAN;
   dem_particles *p = dem_sim_particles(sc->sim);
   if (!sc->cfg.output_stress || p->n == 0) return DEM_OK;
   dem_contact_view v;
@@ -111,7 +145,7 @@ int scene_stress_row(dem_scene *sc, double out[SCENE_NSTRESS], dem_err *err) {
   out[0] = dem_stress_hydrostatic(sig);
   out[1] = dem_stress_deviatoric(sig);
   if ((rc = dem_solids_fraction(p->n, p->x, p->radius, &bin, vol, &out[2], err))) return rc;
-  return DEM_OK;
+  return footprint(sc, &w, out + 4, err);
 }
 
 int dem_scene_stress_grid(dem_scene *sc, size_t nz, double *sigma, dem_grid *grid_out,
