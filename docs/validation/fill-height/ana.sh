@@ -2,13 +2,14 @@
 # The fill-height series (docs/validation.md, "The fill height of a glass-bead bed"): per fill
 # fraction, the scene's solids fraction, the settled and unloaded bed's phi in the column
 # under the ball (top 8 d and whole, 8 d cylinder), and H over h/r 0.2-0.5 and 0.3-0.5.
-# Run in the folder holding settle.log (seed 1), settle_s2.log (seed 2: the same configs with
-# seed = 2) and out_f*/; PHIPROF: the built ../full-hertz-jkr-bh/phiprof.c.
+# Run in the folder holding settle.log (seed 1), settle_s2.log (seed 2), settle_s34.log
+# (seeds 3, 4: the same configs with seed = 2, 3, 4), hwin.awk and out_f*/; PHIPROF: the built
+# ../full-hertz-jkr-bh/phiprof.c.
 P=${PHIPROF:-../full-hertz-jkr-bh/phiprof}
-for f in 0.36 0.2 0.144 0.087 0.36_s2 0.144_s2; do
+for f in 0.36 0.2 0.144 0.087 0.36_s2 0.144_s2 0.36_s3 0.144_s3 0.36_s4 0.144_s4; do
   [ -f out_f$f/series.csv ] || continue
-  ff=${f%_s2}; sd=1; [ "$ff" != "$f" ] && sd=2
-  line=$(awk -v f="$ff" -v sd=$sd '$1=="=="&&$3==f&&($4=="seed"?$5:1)==sd{on=1;next} on&&/^particles/{print;exit}' settle.log settle_s2.log)
+  ff=${f%_s*}; sd=1; [ "$ff" != "$f" ] && sd=${f#*_s}
+  line=$(awk -v f="$ff" -v sd=$sd '$1=="=="&&$3==f&&($4=="seed"?$5:1)==sd{on=1;next} on&&/^particles/{print;exit}' settle*.log)
   sf=$(echo "$line" | grep -o 'surface [0-9.e-]* m' | awk '{print $2}')
   echo "f $f: $(echo "$line" | grep -o 'bed after unloading [^)]*)')"
   awk -F, 'NR>1 && $2==3 && $7!="nan" { if($7>=0.2&&$7<=0.5){h+=$9;n++} if($7>=0.3&&$7<=0.5){h3+=$9;n3++} }
