@@ -837,24 +837,38 @@ static int c_gamma(vh *h, vh_case_result *r, dem_err *err) {
 
 /* ---- 10. strain rate ------------------------------------------------------------------- */
 static const double rates[] = {0.03, 0.1, 0.23, 0.46, 1.0, 2.3};
+#define VH_NRATES 6
 /* Case 10's reading of the rise, not a criterion (the thesis states none): H = H0 + beta
- * rho_b v^2 over the rates that ran (dem_rate_fit_dynamic, docs/analysis.md "Rate
- * dependence"): the quasi-static hardness, the dynamic-pressure coefficient and the speed and
- * gamma* at which the dynamic part reaches VH_RATE_ONSET_FRACTION of H0. Needs 3 rates (one
- * degree of freedom left to judge the fit). */
+ * rho_b v^2 over the rates that ran, on every replicate bed together (dem_rate_fit_dynamic,
+ * docs/analysis.md "Rate dependence"; rho_b and gamma* per m/s are the beds' means; the
+ * scatter between beds enters through the fit's scale factor sqrt(chi2/dof)): the
+ * quasi-static hardness, the dynamic-pressure coefficient and the speed and gamma* at which
+ * the dynamic part reaches VH_RATE_ONSET_FRACTION of H0. Needs 3 runs (one degree of freedom
+ * left to judge the fit). */
 static void rate_fit(const vh *h, vh_case_result *r, const int *idx, int n) {
-  double v[8], H[8], se[8];
-  int m = 0, bed = -1;
-  for (int k = 0; k < n && m < 8; k++) {
+  double v[VH_NRATES * VH_MAX_REPLICATES], H[VH_NRATES * VH_MAX_REPLICATES],
+      se[VH_NRATES * VH_MAX_REPLICATES];
+  int m = 0, nb = 0, seen[VH_MAX_REPLICATES];
+  double rho_b = 0.0, g_per_v = 0.0;
+  for (int k = 0; k < n && m < VH_NRATES * VH_MAX_REPLICATES; k++) {
     if (!ok(h, idx[k])) continue;
     const vh_run *u = &h->runs[idx[k]];
     if (!(isfinite(u->v) && u->sH.se > 0.0)) continue;
-    bed = u->bed;
+    int known = 0;
+    for (int j = 0; j < nb; j++) known |= seen[j] == u->bed;
+    if (!known && nb < VH_MAX_REPLICATES) {
+      const vh_bed *b = &h->beds[u->bed];
+      seen[nb++] = u->bed;
+      rho_b += b->rho * b->phi;
+      /* gamma* is proportional to v on one bed */
+      g_per_v += dem_gamma_star(dem_indent_strain_rate(1.0, b->bed_top), D_MEAN, G_ACC);
+    }
     v[m] = u->v, H[m] = u->sH.mean, se[m] = u->sH.se, m++;
   }
   if (m < 3) return;
-  const vh_bed *b = &h->beds[bed];
-  r->rho_b = b->rho * b->phi;
+  r->rho_b = rho_b / nb;
+  r->rate_fit_beds = nb;
+  g_per_v /= nb;
   dem_err e = {0};
   if (dem_rate_fit_dynamic((size_t)m, v, H, se, r->rho_b, &r->rate_fit, &e)) {
     vh_log(h, "warning: case %s: the rate fit: %s", r->name, e.msg);
@@ -863,41 +877,163 @@ static void rate_fit(const vh *h, vh_case_result *r, const int *idx, int n) {
   r->has_rate_fit = 1;
   r->onset_v =
       dem_rate_onset_speed(&r->rate_fit, r->rho_b, VH_RATE_ONSET_FRACTION, &r->onset_v_se);
-  /* gamma* is proportional to v on one bed */
-  double g_per_v = dem_gamma_star(dem_indent_strain_rate(1.0, b->bed_top), D_MEAN, G_ACC);
   r->onset_gamma_star = g_per_v * r->onset_v;
   r->onset_gamma_star_se = g_per_v * r->onset_v_se;
 }
 
+/* The replicates j < k whose runs idx[j * nper + cols[o]] (o < nc) all succeeded, in use[].
+ * Returns their number. */
+static int usable_cols(const vh *h, const int *idx, int k, int nper, const int *cols, int nc,
+                       int *use) {
+  int n = 0;
+  for (int j = 0; j < k; j++) {
+    int all = 1;
+    for (int o = 0; o < nc; o++)
+      if (!ok(h, idx[j * nper + cols[o]])) all = 0;
+    if (all) use[n++] = j;
+  }
+  return n;
+}
+
+/* Pairwise agreement of the plateau means of the runs in columns 0..nc of idx (nper runs per
+ * replicate bed, beds use[0..n)), by the paired two-sided test over the beds at level / pairs
+ * (Bonferroni). With one bed it is the z-test of the two runs (dem_compare_paired, k = 1).
+ * The pair printed is the one furthest beyond its critical value (z and t pairs can mix). */
+static void agree_paired(vh *h, vh_check *c, const int *idx, int nper, const int *use, int n,
+                         int k, int nc, const char *const *names) {
+  if (n == 0) return;
+  const int npairs = nc * (nc - 1) / 2;
+  int all = 1;
+  double worst_r = -1.0;
+  dem_comparison worst = {0};
+  char wname[64] = "";
+  for (int a = 0; a < nc; a++)
+    for (int b = a + 1; b < nc; b++) {
+      double ma[VH_MAX_REPLICATES], sa[VH_MAX_REPLICATES], mb[VH_MAX_REPLICATES],
+          sb[VH_MAX_REPLICATES];
+      for (int j = 0; j < n; j++) {
+        const dem_series_stats *x = &h->runs[idx[use[j] * nper + a]].sH,
+                               *y = &h->runs[idx[use[j] * nper + b]].sH;
+        ma[j] = x->mean, sa[j] = x->se, mb[j] = y->mean, sb[j] = y->se;
+      }
+      dem_comparison z;
+      dem_err e = {0};
+      if (dem_compare_paired((size_t)n, ma, sa, mb, sb, h->level / npairs, DEM_TEST_TWO_SIDED,
+                             &z, NULL, &e))
+        return;
+      double rr = fabs(z.z) / z.z_crit;
+      if (rr > worst_r) {
+        worst_r = rr, worst = z;
+        snprintf(wname, sizeof wname, "%s vs %s", names[a], names[b]);
+      }
+      if (z.different) all = 0;
+    }
+  char buf[160] = "", rn[64];
+  size_t m = 0;
+  for (int a = 0; a < nc && m < sizeof buf - 24; a++) {
+    double mean = 0.0;
+    for (int j = 0; j < n; j++) mean += h->runs[idx[use[j] * nper + a]].sH.mean / n;
+    m += (size_t)snprintf(buf + m, sizeof buf - m, "%s%s %.2f", a ? ", " : "", names[a],
+                          mean / 1e3);
+  }
+  reps_note(rn, sizeof rn, n, k);
+  char dof[24] = "";
+  if (!isinf(worst.nu)) snprintf(dof, sizeof dof, " on %.0f dof", worst.nu);
+  /* the precisions keep the worst case within c->ours (-Wformat-truncation) */
+  snprintf(c->ours, sizeof c->ours, "H [kPa]: %.80s; max |%s| = %.2f (%.24s), crit %.2f%.12s%.40s",
+           buf, zt(&worst), fabs(worst.z), wname, worst.z_crit, dof, rn);
+  c->status = pass(all);
+}
+
+/* The rate sweep on every replicate of the rate bed (seeds 1..k; the flatness the thesis
+ * reports is judged over the beds, since the slowest rate's reading varied from nothing to
+ * +40 % between four x0.3 beds: docs/validation.md, "The slowest rate of case 10 on more
+ * beds"); idx[j * VH_NRATES + o] is rate o on bed j. */
 static int c_rate(vh *h, vh_case_result *r, dem_err *err) {
   r->xlabel = "gamma* = gamma_dot (d/g)^0.5";
   r->logx = 1;
-  int idx[6];
-  for (int k = 0; k < 6; k++) {
-    vh_bed b = vh_bed_rate(h);
-    vh_indent in = vh_indent_ref(h);
-    in.gamma_star = rates[k];
-    char lab[40];
-    snprintf(lab, sizeof lab, "gamma* %g", rates[k]);
-    if ((idx[k] = add_run_x(h, r, &b, &in, lab, rates[k], err)) < 0) return err->code;
-  }
+  const int k = nreplicates(h);
+  int idx[VH_NRATES * VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
+  for (int j = 0; j < k; j++)
+    for (int o = 0; o < VH_NRATES; o++) {
+      vh_bed b = vh_bed_rate(h);
+      b.seed = vh_bed_ref(h, j).seed; /* replicate j of the rate bed */
+      vh_indent in = vh_indent_ref(h);
+      in.gamma_star = rates[o];
+      char lab[40];
+      if (j == 0) snprintf(lab, sizeof lab, "gamma* %g", rates[o]);
+      else snprintf(lab, sizeof lab, "gamma* %g, seed %lu", rates[o], b.seed);
+      /* the trend figure shows the first bed (as cases 1, 4 and 6 do) */
+      int i = add_run_x(h, r, &b, &in, lab, j ? NAN : rates[o], err);
+      if ((idx[j * VH_NRATES + o] = i) < 0) return err->code;
+    }
   const char *nm[] = {"0.03", "0.1", "0.23", "0.46"};
+  static const int flat[] = {0, 1, 2, 3}, sdc[] = {1, 3, 4}, rise[] = {5, 1};
+  char rn[64];
   vh_check *c = check(r, "H is independent of gamma* up to 0.46: the four rates agree pairwise",
-                      "z, two-sided, Bonferroni", "constant up to gamma* ~ 1 (Figs 7.3, 7.4)");
-  agree_all(h, c, idx, 4, nm);
+                      k > 1 ? "paired over the replicate beds, two-sided, Bonferroni"
+                            : "z, two-sided, Bonferroni",
+                      "constant up to gamma* ~ 1 (Figs 7.3, 7.4)");
+  int n = usable_cols(h, idx, k, VH_NRATES, flat, 4, use);
+  agree_paired(h, c, idx, VH_NRATES, use, n, k, 4, nm);
   c = check(r, "the fluctuation grows from about 0.5: sd(H) at gamma* 0.46 and 1 exceeds sd(H) "
                "at 0.1",
-            "sd ratio", "fluctuations increase from gamma* = 0.5 (7.4)");
-  if (ok(h, idx[1]) && ok(h, idx[3]) && ok(h, idx[4])) {
-    double r1 = h->runs[idx[3]].sH.sd / h->runs[idx[1]].sH.sd;
-    double r2 = h->runs[idx[4]].sH.sd / h->runs[idx[1]].sH.sd;
-    snprintf(c->ours, sizeof c->ours, "sd ratios %.2f (0.46), %.2f (1.0)", r1, r2);
-    c->status = pass(r1 > 1.0 && r2 > 1.0);
+            k > 1 ? "ratio of the sd(H) means over the replicate beds" : "sd ratio",
+            "fluctuations increase from gamma* = 0.5 (7.4)");
+  if ((n = usable_cols(h, idx, k, VH_NRATES, sdc, 3, use)) > 0) {
+    double s1 = 0, s3 = 0, s4 = 0;
+    char pb[80] = "";
+    for (int j = 0; j < n; j++) {
+      const int *q = &idx[use[j] * VH_NRATES];
+      s1 += h->runs[q[1]].sH.sd / n, s3 += h->runs[q[3]].sH.sd / n, s4 += h->runs[q[4]].sH.sd / n;
+      size_t m = strlen(pb);
+      const double sd1 = h->runs[q[1]].sH.sd;
+      snprintf(pb + m, sizeof pb - m, "%s%.2f/%.2f", j ? " " : "; per bed (0.46/1.0) ",
+               h->runs[q[3]].sH.sd / sd1, h->runs[q[4]].sH.sd / sd1);
+    }
+    if (k == 1) pb[0] = 0;
+    reps_note(rn, sizeof rn, n, k);
+    snprintf(c->ours, sizeof c->ours, "sd ratios %.2f (0.46), %.2f (1.0)%s%s", s3 / s1, s4 / s1,
+             pb, rn);
+    c->status = pass(s3 > s1 && s4 > s1);
   }
-  c = check(r, "H rises above gamma* = 1: H(2.3) > H(0.1)", "z, one-sided, level 0.05",
+  /* A rise by a factor 3-10 (docs/validation.md) is judged on every bed by itself, not by the
+   * paired test: the rise scales with each bed's hardness, so the beds' differences vary
+   * beyond their errors and the paired test falls back to Student's t on k - 1 dof (6.31
+   * for two beds), which a rise of 3x on one bed and 10x on the other can fail. "Rises on
+   * every bed", each by the one-sided z-test at the level, is an intersection-union test:
+   * its level is the level of each test, with no correction. */
+  c = check(r, "H rises above gamma* = 1: H(2.3) > H(0.1)",
+            k > 1 ? "z, one-sided, level 0.05, on every replicate bed"
+                  : "z, one-sided, level 0.05",
             "stresses rise above gamma* ~ 1, hardness most (7.2)");
-  greater(h, c, idx[5], idx[1], "2.3", "0.1");
-  rate_fit(h, r, idx, 6);
+  if ((n = usable_cols(h, idx, k, VH_NRATES, rise, 2, use)) > 0) {
+    double ma = 0, mb = 0, zmin = INFINITY, crit = NAN, pmax = 0;
+    int all = 1;
+    char pb[80] = "";
+    for (int j = 0; j < n; j++) {
+      const dem_series_stats *sa = &h->runs[idx[use[j] * VH_NRATES + 5]].sH,
+                             *sb = &h->runs[idx[use[j] * VH_NRATES + 1]].sH;
+      dem_comparison z;
+      if (vh_greater(h, sa, sb, &z)) {
+        all = -1;
+        break;
+      }
+      ma += sa->mean / n, mb += sb->mean / n;
+      if (z.z < zmin) zmin = z.z, crit = z.z_crit, pmax = z.p;
+      if (!z.different) all = 0;
+      per_bed(pb, sizeof pb, j, k, 2, z.z);
+    }
+    if (all >= 0) {
+      reps_note(rn, sizeof rn, n, k);
+      snprintf(c->ours, sizeof c->ours, "H(2.3) %.2f, H(0.1) %.2f kPa; z = %.2f (crit %.2f), "
+                                        "p = %.3g%s%.50s%.40s",
+               ma / 1e3, mb / 1e3, zmin, crit, pmax, k > 1 ? " (the least of the beds)" : "",
+               pb, rn);
+      c->status = pass(all);
+    }
+  }
+  rate_fit(h, r, idx, VH_NRATES * k);
   finish(h, r);
   return DEM_OK;
 }

@@ -217,7 +217,8 @@ static int plot_rate_fit(const vh *h, const vh_case_result *r, const char *png, 
   for (int i = 0; i < r->nruns; i++) {
     const vh_run *u = &h->runs[r->runs[i]];
     if (u->status || !isfinite(u->v) || !isfinite(u->sH.mean)) continue;
-    fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g\n", r->x[i], u->v, r->rho_b * u->v * u->v,
+    /* every replicate bed's runs (their x is NaN but for the first bed's) */
+    fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g\n", u->ind.gamma_star, u->v, r->rho_b * u->v * u->v,
             u->sH.mean, u->sH.se, u->sH.sd);
   }
   int rc = close_rename(f, tmp, h->out, dat, err);
@@ -482,14 +483,19 @@ int vh_report_write(const vh *h, const vh_case_result *cres, int nres, double wa
       const dem_rate_fit *q = &r->rate_fit;
       char pv[48] = "";
       if (q->dof > 0) snprintf(pv, sizeof pv, ", p %.2g", q->p);
+      char beds[48] = "";
+      if (r->rate_fit_beds > 1)
+        snprintf(beds, sizeof beds, " on %d replicate beds", r->rate_fit_beds);
       d_para(&d, "Reading of the rise (not a criterion): the weighted fit H = H0 + beta rho_b "
-                 "v^2 over the %d rates that ran (v the indenter speed, rho_b = %.0f kg/m^3 the "
-                 "particle density times the bed's solids fraction; docs/analysis.md, \"Rate "
+                 "v^2 over the %d runs made%s (v the indenter speed, rho_b = %.0f kg/m^3 the "
+                 "particle density times the bed's solids fraction%s; docs/analysis.md, \"Rate "
                  "dependence\") gives H0 = %.2f +- %.2f kPa and beta = %.2f +- %.2f (chi2 %.2g "
                  "on %d dof%s%s). The dynamic part reaches %.0f %% of H0 at v = %.3g +- %.2g m/s, "
-                 "gamma* %.2g +- %.2g on this bed (the thesis: H flat up to gamma* ~ 1).",
-             q->dof + 2, r->rho_b, q->H0 / 1e3, q->H0_se / 1e3, q->beta, q->beta_se, q->chi2,
-             q->dof, pv, q->scale > 1.0 ? "; errors scaled by sqrt(chi2/dof)" : "",
+                 "gamma* %.2g +- %.2g (the thesis: H flat up to gamma* ~ 1).",
+             q->dof + 2, beds, r->rho_b,
+             r->rate_fit_beds > 1 ? ", the beds' mean, as is gamma* per m/s" : "", q->H0 / 1e3,
+             q->H0_se / 1e3, q->beta, q->beta_se, q->chi2, q->dof, pv,
+             q->scale > 1.0 ? "; errors scaled by sqrt(chi2/dof)" : "",
              100.0 * VH_RATE_ONSET_FRACTION, r->onset_v, r->onset_v_se, r->onset_gamma_star,
              r->onset_gamma_star_se);
     }
@@ -659,16 +665,14 @@ int vh_json_print(const vh *h, const vh_case_result *res, int nres, double wall_
     json_object_set_new(c, "runs", runs);
     if (r->has_rate_fit) {
       const dem_rate_fit *q = &r->rate_fit;
-      json_t *fit = json_pack("{s:o,s:o,s:o,s:o,s:o,s:o,s:o,s:i,s:o,s:o,s:f,s:o,s:o,s:o,s:o}",
-                              "rho_b", jnum(r->rho_b), "H0", jnum(q->H0), "H0_se",
-                              jnum(q->H0_se), "beta", jnum(q->beta), "beta_se",
-                              jnum(q->beta_se), "cov", jnum(q->cov), "chi2", jnum(q->chi2),
-                              "dof", q->dof, "p", jnum(q->p), "scale", jnum(q->scale),
-                              "onset_fraction", VH_RATE_ONSET_FRACTION, "onset_speed_m_s",
-                              jnum(r->onset_v),
-                              "onset_speed_se", jnum(r->onset_v_se), "onset_gamma_star",
-                              jnum(r->onset_gamma_star), "onset_gamma_star_se",
-                              jnum(r->onset_gamma_star_se));
+      json_t *fit = json_pack(
+          "{s:i,s:o,s:o,s:o,s:o,s:o,s:o,s:o,s:i,s:o,s:o,s:f,s:o,s:o,s:o,s:o}", "beds",
+          r->rate_fit_beds, "rho_b", jnum(r->rho_b), "H0", jnum(q->H0), "H0_se", jnum(q->H0_se),
+          "beta", jnum(q->beta), "beta_se", jnum(q->beta_se), "cov", jnum(q->cov), "chi2",
+          jnum(q->chi2), "dof", q->dof, "p", jnum(q->p), "scale", jnum(q->scale),
+          "onset_fraction", VH_RATE_ONSET_FRACTION, "onset_speed_m_s", jnum(r->onset_v),
+          "onset_speed_se", jnum(r->onset_v_se), "onset_gamma_star", jnum(r->onset_gamma_star),
+          "onset_gamma_star_se", jnum(r->onset_gamma_star_se));
       json_object_set_new(c, "rate_fit", fit);
     } else {
       json_object_set_new(c, "rate_fit", json_null());

@@ -10,7 +10,7 @@
 #include "vh_run.h"
 
 #define VH_MAX_CHECKS 8
-#define VH_MAX_CASE_RUNS 16
+#define VH_MAX_CASE_RUNS 24 /* case 10: six rates on four replicate beds */
 /* Cases 1-4 (bits 0-3) reproduce chapter 5, whose runs used its own materials (hertz-jkr) */
 #define VH_CHAPTER5_CASES 0xf
 /* Case 10's reading of the rate rise (not a criterion): the rate at which the dynamic part
@@ -51,7 +51,8 @@ typedef struct vh_case_result {
    * (dem_rate_fit_dynamic); has_rate_fit 0 if fewer than 3 rates ran */
   int has_rate_fit;
   dem_rate_fit rate_fit;
-  double rho_b;          /* kg/m^3, particle density x the bed's solids fraction */
+  int rate_fit_beds;     /* replicate beds whose runs entered the fit */
+  double rho_b;          /* kg/m^3, particle density x the solids fraction (beds' mean) */
   double onset_v, onset_v_se; /* m/s, where beta rho_b v^2 = 0.1 H0 (dem_rate_onset_speed) */
   double onset_gamma_star, onset_gamma_star_se; /* the same as gamma* on that bed */
 } vh_case_result;
