@@ -168,11 +168,29 @@ int vh_plot_runs(const vh *h, const char *png, const char *title, const int *run
   }
   if (top > 0) m += (size_t)snprintf(s + m, sizeof s - m, "set yrange [0:%g]\n", 2.5 * top / 1e3);
   m += (size_t)snprintf(s + m, sizeof s - m, "set ylabel '%s'\nplot ", yl);
-  for (int i = 0; i < nruns && m < sizeof s - 256; i++) {
+  /* A run on a replicate bed ("label, seed s") takes the colour of its first bed's run
+   * ("label") and dash type s, so the beds of one variant read as one colour. */
+  int colour[VH_MAX_CASE_RUNS], ncol = 0;
+  for (int i = 0; i < nruns && i < VH_MAX_CASE_RUNS && m < sizeof s - 256; i++) {
     const char *scale = column == 5 ? "" : "/1000";
+    const char *sd = strstr(labels[i], ", seed ");
+    int dash = 1;
+    colour[i] = 0;
+    if (sd) {
+      size_t base = (size_t)(sd - labels[i]);
+      dash = atoi(sd + 7);
+      dash = dash < 1 ? 1 : dash > 5 ? 5 : dash;
+      for (int j = 0; j < i; j++)
+        if (strncmp(labels[j], labels[i], base) == 0 && labels[j][base] == 0) {
+          colour[i] = colour[j];
+          break;
+        }
+    }
+    if (!colour[i]) colour[i] = ++ncol;
     m += (size_t)snprintf(s + m, sizeof s - m, "%s'data/run_%02d.dat' u 1:($%d%s) w l lw 1.5 "
-                                               "t \"%s\"",
-                          i ? ", " : "", runs[i], column, scale, labels[i]);
+                                               "lc %d dt %d t \"%s\"",
+                          i ? ", " : "", runs[i], column, scale, colour[i], dash,
+                          labels[i]);
   }
   snprintf(s + m, sizeof s - m, "\n");
   return gnuplot(h, s, err);
