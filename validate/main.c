@@ -66,8 +66,9 @@ static void usage(FILE *f) {
           "             cases it runs)\n"
           "  --replicates N  replicate beds (seeds 1..N, N <= 4) on which the cases whose\n"
           "             criteria swing from bed to bed (plateau, penetration-depth,\n"
-          "             indenter-shape, indenter-size's wall confinement on the shallow bed)\n"
-          "             make their runs and are judged paired over the beds;\n"
+          "             indenter-shape, indenter-size's wall confinement on the shallow bed,\n"
+          "             strain-rate on its rate bed) make their runs and are judged over the\n"
+          "             beds;\n"
           "             and from which cases 2, 8, 9 estimate the bed-to-bed spread (default:\n"
           "             the tier's: 1 quick and smoke, 2 medium and full)\n",
           prog, prog);
