@@ -1,9 +1,11 @@
 # pairs.awk: case 10's flatness pairs by hand, from strain-rate_dynamic.png.dat (every run:
-# gamma*, v, rho_b v^2, H, se, sd; seed 1's six rates, then seed 2's). Per pair: the
+# gamma*, v, rho_b v^2, H, se, sd; seed 1's rates, then seed 2's; a run that failed is not
+# listed, and a bed starts at its gamma* 0.03 line). Per pair: the
 # difference on each bed and its own z, Cochran's Q (heterogeneous above chi^2_1(0.95) =
 # 3.841) and the paired statistic dem_compare_paired uses (z on the runs' errors, or t on
 # 1 dof on the beds' spread). Usage: awk -f pairs.awk strain-rate_dynamic.png.dat
-!/^#/ { j = int(n / 6); o = n % 6; H[j, o] = $4; S[j, o] = $5; n++ }
+BEGIN { split("0.03 0.1 0.23 0.46 1 2.3", g, " "); for (i = 1; i <= 6; i++) col[g[i]] = i - 1; j = -1 }
+!/^#/ { if ($1 == "0.03") j++; H[j, col[$1]] = $4; S[j, col[$1]] = $5 }
 END {
   split("0.03 0.1 0.23 0.46", nm, " ")
   for (a = 0; a < 4; a++) for (b = a + 1; b < 4; b++) {
