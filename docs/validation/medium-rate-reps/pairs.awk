@@ -1,21 +1,26 @@
 # pairs.awk: case 10's flatness pairs by hand, from strain-rate_dynamic.png.dat (every run:
-# gamma*, v, rho_b v^2, H, se, sd; seed 1's rates, then seed 2's; a run that failed is not
-# listed, and a bed starts at its gamma* 0.03 line). Per pair: the
-# difference on each bed and its own z, Cochran's Q (heterogeneous above chi^2_1(0.95) =
-# 3.841) and the paired statistic dem_compare_paired uses (z on the runs' errors, or t on
-# 1 dof on the beds' spread). Usage: awk -f pairs.awk strain-rate_dynamic.png.dat
-BEGIN { split("0.03 0.1 0.23 0.46 1 2.3", g, " "); for (i = 1; i <= 6; i++) col[g[i]] = i - 1; j = -1 }
-!/^#/ { if ($1 == "0.03") j++; H[j, col[$1]] = $4; S[j, col[$1]] = $5 }
+# gamma*, v, rho_b v^2, H, se, sd; seed 1's rates, then seed 2's, ...; a run that failed is
+# not listed, and a bed starts at its gamma* 0.03 line). Per pair: the difference on each
+# bed (its own z), Cochran's Q (heterogeneous above chi^2_(k-1)(0.95): 3.841, 5.991, 7.815
+# for k = 2, 3, 4 beds) and the paired statistic dem_compare_paired uses: z = dbar /
+# (sqrt(sum s_i^2) / k) on the runs' errors, or t = dbar / (sd(d) / sqrt(k)) on k - 1 dof.
+# Usage: awk -f pairs.awk strain-rate_dynamic.png.dat
+BEGIN { split("0.03 0.1 0.23 0.46 1 2.3", g, " "); for (i = 1; i <= 6; i++) col[g[i]] = i - 1; k = 0
+        q95[2] = 3.841; q95[3] = 5.991; q95[4] = 7.815 }
+!/^#/ { if ($1 == "0.03") k++; H[k - 1, col[$1]] = $4; S[k - 1, col[$1]] = $5 }
 END {
   split("0.03 0.1 0.23 0.46", nm, " ")
   for (a = 0; a < 4; a++) for (b = a + 1; b < 4; b++) {
-    for (j = 0; j < 2; j++) { d[j] = H[j, a] - H[j, b]; s2[j] = S[j, a]^2 + S[j, b]^2; zj[j] = d[j] / sqrt(s2[j]) }
-    dw = (d[0] / s2[0] + d[1] / s2[1]) / (1 / s2[0] + 1 / s2[1])
-    Q = (d[0] - dw)^2 / s2[0] + (d[1] - dw)^2 / s2[1]
-    db = (d[0] + d[1]) / 2
-    if (Q > 3.841) { se = (d[0] > d[1] ? d[0] - d[1] : d[1] - d[0]) / 2; lt = "t" }
-    else { se = sqrt(s2[0] + s2[1]) / 2; lt = "z" }
-    printf "%s vs %s: difference per bed %.0f, %.0f Pa (z %.2f, %.2f); Q %.2f; paired %s = %.2f\n",
-      nm[a + 1], nm[b + 1], d[0], d[1], zj[0], zj[1], Q, lt, db / se
+    line = ""; sw = 0; sdw = 0; ss = 0; db = 0
+    for (j = 0; j < k; j++) {
+      d[j] = H[j, a] - H[j, b]; s2[j] = S[j, a]^2 + S[j, b]^2
+      line = line sprintf("%s%.0f (z %.2f)", j ? ", " : "", d[j], d[j] / sqrt(s2[j]))
+      sw += 1 / s2[j]; sdw += d[j] / s2[j]; ss += s2[j]; db += d[j] / k
+    }
+    dw = sdw / sw; Q = 0; v = 0
+    for (j = 0; j < k; j++) { Q += (d[j] - dw)^2 / s2[j]; v += (d[j] - db)^2 / (k - 1) }
+    if (Q > q95[k]) { se = sqrt(v / k); lt = "t" } else { se = sqrt(ss) / k; lt = "z" }
+    printf "%s vs %s: difference per bed [Pa] %s; Q %.2f; paired %s = %.2f\n",
+      nm[a + 1], nm[b + 1], line, Q, lt, db / se
   }
 }
