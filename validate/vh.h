@@ -48,13 +48,15 @@ typedef struct vh_case_result {
   char plots[5][96];     /* PNG files written for this case ("" if none) */
   char note[400];
   /* case 10 only, not a criterion: H = H0 + beta rho_b v^2 over its rates
-   * (dem_rate_fit_dynamic); has_rate_fit 0 if fewer than 3 rates ran */
+   * on every replicate bed together (dem_rate_fit_dynamic); has_rate_fit 0 if fewer than
+   * 3 runs succeeded */
   int has_rate_fit;
   dem_rate_fit rate_fit;
   int rate_fit_beds;     /* replicate beds whose runs entered the fit */
   double rho_b;          /* kg/m^3, particle density x the solids fraction (beds' mean) */
   double onset_v, onset_v_se; /* m/s, where beta rho_b v^2 = 0.1 H0 (dem_rate_onset_speed) */
-  double onset_gamma_star, onset_gamma_star_se; /* the same as gamma* on that bed */
+  double onset_gamma_star, onset_gamma_star_se; /* the same as gamma* (the beds' mean
+                                                    gamma* per m/s) */
 } vh_case_result;
 
 typedef struct vh_case {
