@@ -103,9 +103,20 @@ static int nreplicates(const vh *h) {
 static int on_replicates(vh *h, vh_case_result *r, const vh_indent *in, double bed,
                          const char *label, int *idx, dem_err *err);
 
-/* The replicates j < k whose runs idx[j * nper + o] (o < nper: the runs of replicate j)
- * all succeeded, in use[]. Returns their number. */
-static int usable(const vh *h, const int *idx, int k, int nper, int *use);
+/* The replicates j < k whose runs idx[j * nper + cols[o]] (o < nc; cols NULL: every run of
+ * replicate j, o < nper) all succeeded, in use[]. Returns their number. */
+static int usable(const vh *h, const int *idx, int k, int nper, const int *cols, int nc,
+                  int *use) {
+  if (!cols) nc = nper;
+  int n = 0;
+  for (int j = 0; j < k; j++) {
+    int all = 1;
+    for (int o = 0; o < nc; o++)
+      if (!ok(h, idx[j * nper + (cols ? cols[o] : o)])) all = 0;
+    if (all) use[n++] = j;
+  }
+  return n;
+}
 
 /* "; mean over k replicate beds" (or "over n of k") after the values printed; "" for k = 1. */
 static void reps_note(char *buf, size_t len, int n, int k) {
@@ -192,39 +203,66 @@ static void greater(vh *h, vh_check *c, int ia, int ib, const char *na, const ch
   c->status = pass(z.different);
 }
 
-/* Pairwise agreement of the plateau means of runs idx[0..n) (Bonferroni). */
-static void agree_all(vh *h, vh_check *c, const int *idx, int n, const char *const *names) {
-  int npairs = n * (n - 1) / 2, all = 1;
-  double zmax = 0;
-  char worst[64] = "";
-  for (int i = 0; i < n; i++)
-    if (!ok(h, idx[i])) return;
-  for (int i = 0; i < n; i++)
-    for (int j = i + 1; j < n; j++) {
+/* "t" for a paired test judged by the spread between beds, else "z". */
+static const char *zt(const dem_comparison *z) { return isinf(z->nu) ? "z" : "t"; }
+
+/* Pairwise agreement of the plateau means of the runs in columns 0..nc of idx (nper runs per
+ * replicate bed, beds use[0..n)), by the paired two-sided test over the beds at level / pairs
+ * (Bonferroni). With one bed it is the z-test of the two runs (dem_compare_paired, k = 1).
+ * The standard errors are widened by s_bed_cur, which is 0 but in the cross-bed comparisons
+ * of cases 2 and 8 (one run per bed, through agree_all). The pair printed is the one
+ * furthest beyond its critical value (z and t pairs can mix). */
+static void agree_paired(vh *h, vh_check *c, const int *idx, int nper, const int *use, int n,
+                         int k, int nc, const char *const *names) {
+  if (n == 0) return;
+  const int npairs = nc * (nc - 1) / 2;
+  int all = 1;
+  double worst_r = -1.0;
+  dem_comparison worst = {0};
+  char wname[64] = "";
+  for (int a = 0; a < nc; a++)
+    for (int b = a + 1; b < nc; b++) {
+      double ma[VH_MAX_REPLICATES], sa[VH_MAX_REPLICATES], mb[VH_MAX_REPLICATES],
+          sb[VH_MAX_REPLICATES];
+      for (int j = 0; j < n; j++) {
+        const dem_series_stats x = widened(&h->runs[idx[use[j] * nper + a]].sH),
+                               y = widened(&h->runs[idx[use[j] * nper + b]].sH);
+        ma[j] = x.mean, sa[j] = x.se, mb[j] = y.mean, sb[j] = y.se;
+      }
       dem_comparison z;
       dem_err e = {0};
-      dem_series_stats wa = widened(&h->runs[idx[i]].sH), wb = widened(&h->runs[idx[j]].sH);
-      const dem_series_stats *a = &wa, *b = &wb;
-      if (dem_compare_means(a->mean, a->se, b->mean, b->se, h->level / npairs,
-                            DEM_TEST_TWO_SIDED, &z, &e))
+      if (dem_compare_paired((size_t)n, ma, sa, mb, sb, h->level / npairs, DEM_TEST_TWO_SIDED,
+                             &z, NULL, &e))
         return;
-      if (fabs(z.z) > fabs(zmax)) {
-        zmax = z.z;
-        snprintf(worst, sizeof worst, "%s vs %s", names[i], names[j]);
+      double rr = fabs(z.z) / z.z_crit;
+      if (rr > worst_r) {
+        worst_r = rr, worst = z;
+        snprintf(wname, sizeof wname, "%s vs %s", names[a], names[b]);
       }
       if (z.different) all = 0;
     }
-  char buf[160] = "";
+  char buf[160] = "", rn[64];
   size_t m = 0;
-  for (int i = 0; i < n && m < sizeof buf - 24; i++)
-    m += (size_t)snprintf(buf + m, sizeof buf - m, "%s%s %.2f", i ? ", " : "", names[i],
-                          h->runs[idx[i]].sH.mean / 1e3);
-  dem_comparison zc;
-  dem_err e = {0};
-  dem_compare_means(1, 1, 0, 1, h->level / (npairs ? npairs : 1), DEM_TEST_TWO_SIDED, &zc, &e);
-  snprintf(c->ours, sizeof c->ours, "H [kPa]: %.110s; max |z| = %.2f (%.40s), crit %.2f", buf,
-           fabs(zmax), worst, zc.z_crit);
+  for (int a = 0; a < nc && m < sizeof buf - 24; a++) {
+    double mean = 0.0;
+    for (int j = 0; j < n; j++) mean += h->runs[idx[use[j] * nper + a]].sH.mean / n;
+    m += (size_t)snprintf(buf + m, sizeof buf - m, "%s%s %.2f", a ? ", " : "", names[a],
+                          mean / 1e3);
+  }
+  reps_note(rn, sizeof rn, n, k);
+  char dof[24] = "";
+  if (!isinf(worst.nu)) snprintf(dof, sizeof dof, " on %.0f dof", worst.nu);
+  /* the precisions keep the worst case within c->ours (-Wformat-truncation) */
+  snprintf(c->ours, sizeof c->ours, "H [kPa]: %.80s; max |%s| = %.2f (%.24s), crit %.2f%.12s%.40s",
+           buf, zt(&worst), fabs(worst.z), wname, worst.z_crit, dof, rn);
   c->status = pass(all);
+}
+
+/* Pairwise agreement of the plateau means of runs idx[0..n), one run each, on one bed or on
+ * different beds (Bonferroni): agree_paired with one "bed" of n runs. */
+static void agree_all(vh *h, vh_check *c, const int *idx, int n, const char *const *names) {
+  int use[1];
+  if (usable(h, idx, 1, n, NULL, 0, use) == 1) agree_paired(h, c, idx, n, use, 1, 1, n, names);
 }
 
 /* Spearman rank correlation of x and y (n <= 16, no ties expected). */
@@ -286,17 +324,6 @@ static int on_replicates(vh *h, vh_case_result *r, const vh_indent *in, double b
   return k;
 }
 
-static int usable(const vh *h, const int *idx, int k, int nper, int *use) {
-  int n = 0;
-  for (int j = 0; j < k; j++) {
-    int all = 1;
-    for (int o = 0; o < nper; o++)
-      if (!ok(h, idx[j * nper + o])) all = 0;
-    if (all) use[n++] = j;
-  }
-  return n;
-}
-
 /* The paired one-sided test "a > b" over n replicate beds: sa[j], sb[j] the two runs'
  * statistics on bed j. */
 static int paired_greater(const vh *h, const dem_series_stats *const *sa,
@@ -313,8 +340,6 @@ static int paired_greater(const vh *h, const dem_series_stats *const *sa,
 }
 
 /* ---- 1. plateau ------------------------------------------------------------------------ */
-/* "t" for a paired test judged by the spread between beds, else "z". */
-static const char *zt(const dem_comparison *z) { return isinf(z->nu) ? "z" : "t"; }
 
 static int c_plateau(vh *h, vh_case_result *r, dem_err *err) {
   vh_indent in = vh_indent_ref(h);
@@ -323,7 +348,7 @@ static int c_plateau(vh *h, vh_case_result *r, dem_err *err) {
   int idx[VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
   int k = on_replicates(h, r, &in, 0, lab, idx, err);
   if (k < 0) return err->code;
-  int n = usable(h, idx, k, 1, use);
+  int n = usable(h, idx, k, 1, NULL, 0, use);
   const vh_tier *t = h->tier;
   const double win = t->plateau_hi - t->plateau_lo;
   char rn[64], what[200];
@@ -529,7 +554,7 @@ static int c_size(vh *h, vh_case_result *r, dem_err *err) {
             "22-25 mm on the 13 mm bed ~10 kPa vs ~8 kPa (Fig 5.6)");
   int comb[2 * VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
   for (int j = 0; j < k; j++) comb[2 * j] = iw[0][j], comb[2 * j + 1] = iw[1][j];
-  int n = usable(h, comb, k, 2, use);
+  int n = usable(h, comb, k, 2, NULL, 0, use);
   const dem_series_stats *sw[VH_MAX_REPLICATES], *sr[VH_MAX_REPLICATES];
   double mw = 0, mr = 0;
   char rn[64], pb[96] = "";
@@ -593,7 +618,7 @@ static int c_depth(vh *h, vh_case_result *r, dem_err *err) {
   int idx[VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
   int k = on_replicates(h, r, &in, 0, lab, idx, err);
   if (k < 0) return err->code;
-  int n = usable(h, idx, k, 1, use);
+  int n = usable(h, idx, k, 1, NULL, 0, use);
   char rn[64];
   reps_note(rn, sizeof rn, n, k);
   vh_check *c = check(r, "the rise of the dynamic-bin hydrostatic stress over its value at the "
@@ -679,7 +704,7 @@ static int c_shape(vh *h, vh_case_result *r, dem_err *err) {
   int comb[3 * VH_MAX_REPLICATES], use[VH_MAX_REPLICATES];
   for (int j = 0; j < k; j++)
     for (int o = 0; o < 3; o++) comb[3 * j + o] = idx[o][j];
-  int n = usable(h, comb, k, 3, use);
+  int n = usable(h, comb, k, 3, NULL, 0, use);
   char rn[64];
   reps_note(rn, sizeof rn, n, k);
   /* Per usable bed: the runs' H and solids-fraction statistics, by shape. */
@@ -881,70 +906,6 @@ static void rate_fit(const vh *h, vh_case_result *r, const int *idx, int n) {
   r->onset_gamma_star_se = g_per_v * r->onset_v_se;
 }
 
-/* The replicates j < k whose runs idx[j * nper + cols[o]] (o < nc) all succeeded, in use[].
- * Returns their number. */
-static int usable_cols(const vh *h, const int *idx, int k, int nper, const int *cols, int nc,
-                       int *use) {
-  int n = 0;
-  for (int j = 0; j < k; j++) {
-    int all = 1;
-    for (int o = 0; o < nc; o++)
-      if (!ok(h, idx[j * nper + cols[o]])) all = 0;
-    if (all) use[n++] = j;
-  }
-  return n;
-}
-
-/* Pairwise agreement of the plateau means of the runs in columns 0..nc of idx (nper runs per
- * replicate bed, beds use[0..n)), by the paired two-sided test over the beds at level / pairs
- * (Bonferroni). With one bed it is the z-test of the two runs (dem_compare_paired, k = 1).
- * The pair printed is the one furthest beyond its critical value (z and t pairs can mix). */
-static void agree_paired(vh *h, vh_check *c, const int *idx, int nper, const int *use, int n,
-                         int k, int nc, const char *const *names) {
-  if (n == 0) return;
-  const int npairs = nc * (nc - 1) / 2;
-  int all = 1;
-  double worst_r = -1.0;
-  dem_comparison worst = {0};
-  char wname[64] = "";
-  for (int a = 0; a < nc; a++)
-    for (int b = a + 1; b < nc; b++) {
-      double ma[VH_MAX_REPLICATES], sa[VH_MAX_REPLICATES], mb[VH_MAX_REPLICATES],
-          sb[VH_MAX_REPLICATES];
-      for (int j = 0; j < n; j++) {
-        const dem_series_stats *x = &h->runs[idx[use[j] * nper + a]].sH,
-                               *y = &h->runs[idx[use[j] * nper + b]].sH;
-        ma[j] = x->mean, sa[j] = x->se, mb[j] = y->mean, sb[j] = y->se;
-      }
-      dem_comparison z;
-      dem_err e = {0};
-      if (dem_compare_paired((size_t)n, ma, sa, mb, sb, h->level / npairs, DEM_TEST_TWO_SIDED,
-                             &z, NULL, &e))
-        return;
-      double rr = fabs(z.z) / z.z_crit;
-      if (rr > worst_r) {
-        worst_r = rr, worst = z;
-        snprintf(wname, sizeof wname, "%s vs %s", names[a], names[b]);
-      }
-      if (z.different) all = 0;
-    }
-  char buf[160] = "", rn[64];
-  size_t m = 0;
-  for (int a = 0; a < nc && m < sizeof buf - 24; a++) {
-    double mean = 0.0;
-    for (int j = 0; j < n; j++) mean += h->runs[idx[use[j] * nper + a]].sH.mean / n;
-    m += (size_t)snprintf(buf + m, sizeof buf - m, "%s%s %.2f", a ? ", " : "", names[a],
-                          mean / 1e3);
-  }
-  reps_note(rn, sizeof rn, n, k);
-  char dof[24] = "";
-  if (!isinf(worst.nu)) snprintf(dof, sizeof dof, " on %.0f dof", worst.nu);
-  /* the precisions keep the worst case within c->ours (-Wformat-truncation) */
-  snprintf(c->ours, sizeof c->ours, "H [kPa]: %.80s; max |%s| = %.2f (%.24s), crit %.2f%.12s%.40s",
-           buf, zt(&worst), fabs(worst.z), wname, worst.z_crit, dof, rn);
-  c->status = pass(all);
-}
-
 /* The rate sweep on every replicate of the rate bed (seeds 1..k; the flatness the thesis
  * reports is judged over the beds, since the slowest rate's reading varied from nothing to
  * +40 % between four x0.3 beds: docs/validation.md, "The slowest rate of case 10 on more
@@ -974,13 +935,13 @@ static int c_rate(vh *h, vh_case_result *r, dem_err *err) {
                       k > 1 ? "paired over the replicate beds, two-sided, Bonferroni"
                             : "z, two-sided, Bonferroni",
                       "constant up to gamma* ~ 1 (Figs 7.3, 7.4)");
-  int n = usable_cols(h, idx, k, VH_NRATES, flat, 4, use);
+  int n = usable(h, idx, k, VH_NRATES, flat, 4, use);
   agree_paired(h, c, idx, VH_NRATES, use, n, k, 4, nm);
   c = check(r, "the fluctuation grows from about 0.5: sd(H) at gamma* 0.46 and 1 exceeds sd(H) "
                "at 0.1",
             k > 1 ? "ratio of the sd(H) means over the replicate beds" : "sd ratio",
             "fluctuations increase from gamma* = 0.5 (7.4)");
-  if ((n = usable_cols(h, idx, k, VH_NRATES, sdc, 3, use)) > 0) {
+  if ((n = usable(h, idx, k, VH_NRATES, sdc, 3, use)) > 0) {
     double s1 = 0, s3 = 0, s4 = 0;
     char pb[80] = "";
     for (int j = 0; j < n; j++) {
@@ -1007,7 +968,7 @@ static int c_rate(vh *h, vh_case_result *r, dem_err *err) {
             k > 1 ? "z, one-sided, level 0.05, on every replicate bed"
                   : "z, one-sided, level 0.05",
             "stresses rise above gamma* ~ 1, hardness most (7.2)");
-  if ((n = usable_cols(h, idx, k, VH_NRATES, rise, 2, use)) > 0) {
+  if ((n = usable(h, idx, k, VH_NRATES, rise, 2, use)) > 0) {
     double ma = 0, mb = 0, zmin = INFINITY, crit = NAN, pmax = 0;
     int all = 1;
     char pb[80] = "";
